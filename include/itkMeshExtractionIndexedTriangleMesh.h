@@ -1,0 +1,314 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionIndexedTriangleMesh_h
+#define itkMeshExtractionIndexedTriangleMesh_h
+
+#include "MeshExtractionExport.h"
+#include "itkMeshExtractionTriangleGeometry.h"
+#include "itkCellInterface.h"
+#include "itkCommonEnums.h"
+#include "itkTriangleCell.h"
+#include "itkMacro.h"
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <unordered_map>
+#include <vector>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+using TriangleIndices = std::array<std::uint32_t, 3>;
+
+/** \brief A triangle mesh as flat arrays: the common input of the calculators.
+ *
+ * Points are compacted to 0..N-1 in the order of the mesh's point container;
+ * `pointIds` and `cellIds` map back to the identifiers of the source mesh.
+ * \ingroup MeshExtraction
+ */
+struct IndexedTriangleMesh
+{
+  std::vector<Vec3>            points;
+  std::vector<TriangleIndices> triangles;
+  std::vector<IdentifierType>  pointIds; ///< source point identifier of each point
+  std::vector<IdentifierType>  cellIds;  ///< source cell identifier of each triangle
+  std::size_t                  numberOfSplitQuads{ 0 };
+  std::size_t                  numberOfIgnoredCells{ 0 }; ///< vertex and line cells (QuadEdgeMesh edges)
+};
+
+/** \brief Edges and incidences of an indexed triangle mesh.
+ *
+ * Built once by sorting the 3F half-edges; everything the integrity checks need
+ * (boundary, non-manifold and inconsistently oriented edges, valences, fans around
+ * vertices, components) is derived from it.
+ * \ingroup MeshExtraction
+ */
+struct MeshTopology
+{
+  struct Edge
+  {
+    std::uint32_t a; ///< smaller vertex index
+    std::uint32_t b; ///< larger vertex index
+    std::uint32_t firstIncidence;
+    std::uint32_t numberOfIncidences; ///< number of triangles using the edge
+  };
+  /** A triangle using an edge, and whether it runs the edge from a to b. */
+  struct Incidence
+  {
+    std::uint32_t triangle;
+    bool          forward;
+  };
+  std::vector<Edge>      edges;
+  std::vector<Incidence> incidences;
+  /** Edge of each triangle side: side k joins corners k and k+1. */
+  std::vector<std::array<std::uint32_t, 3>> triangleEdges;
+  /** Vertex -> incident triangles (compressed rows). */
+  std::vector<std::uint32_t> vertexTriangleOffsets;
+  std::vector<std::uint32_t> vertexTriangles;
+  /** Vertex -> incident edges (compressed rows). */
+  std::vector<std::uint32_t> vertexEdgeOffsets;
+  std::vector<std::uint32_t> vertexEdges;
+
+  std::size_t numberOfReferencedVertices{ 0 };
+  std::size_t numberOfBoundaryEdges{ 0 };
+  std::size_t numberOfNonManifoldEdges{ 0 };
+  std::size_t numberOfInconsistentEdges{ 0 }; ///< two triangles running the edge the same way
+  std::size_t numberOfNonManifoldVertices{ 0 };
+  std::size_t numberOfComponents{ 0 };
+  std::size_t numberOfBoundaryLoops{ 0 };
+  std::vector<std::uint32_t> triangleComponent;   ///< component of each triangle
+  std::vector<bool>          vertexIsInterior;    ///< referenced, manifold, not on a boundary
+  std::vector<bool>          vertexIsNonManifold; ///< its triangles form more than one fan
+  std::vector<std::uint32_t> componentBoundaryLoops; ///< boundary loops per component
+
+  /** The other triangle on the side of a manifold edge, or -1 (max uint32). */
+  std::uint32_t
+  Neighbor(std::uint32_t triangle, unsigned int side) const
+  {
+    const Edge & e = edges[triangleEdges[triangle][side]];
+    if (e.numberOfIncidences != 2)
+    {
+      return std::numeric_limits<std::uint32_t>::max();
+    }
+    const Incidence & i0 = incidences[e.firstIncidence];
+    return i0.triangle == triangle ? incidences[e.firstIncidence + 1].triangle : i0.triangle;
+  }
+};
+
+/** Build the topology of an indexed triangle mesh (O(F log F), deterministic). */
+MeshExtraction_EXPORT MeshTopology
+BuildMeshTopology(const IndexedTriangleMesh & mesh);
+
+/** Split a quad (a, b, c, d) along its shorter diagonal into two triangles. */
+MeshExtraction_EXPORT void
+SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIndices & t0, TriangleIndices & t1);
+
+namespace Detail
+{
+template <typename T, typename = void>
+struct IsQuadEdgeMesh : std::false_type
+{};
+template <typename T>
+struct IsQuadEdgeMesh<T, std::void_t<typename T::QEPrimal>> : std::true_type
+{};
+} // namespace Detail
+
+/** Copy an itk::Mesh or itk::QuadEdgeMesh into flat arrays.
+ *
+ * Triangles are kept; quadrilaterals are split along their shorter diagonal and
+ * counted in numberOfSplitQuads; vertex and line cells (a QuadEdgeMesh stores its
+ * edges as line cells) are skipped; any other polygon raises an
+ * itk::ExceptionObject naming the cell and its number of points, as do cells that
+ * reference missing points. */
+template <typename TMesh>
+IndexedTriangleMesh
+MakeIndexedTriangleMesh(const TMesh & mesh)
+{
+  IndexedTriangleMesh out;
+  const auto *        points = mesh.GetPoints();
+  if (points == nullptr || points->Size() == 0)
+  {
+    return out;
+  }
+  if (points->Size() >= std::numeric_limits<std::uint32_t>::max())
+  {
+    itkGenericExceptionMacro("MeshExtraction: mesh has " << points->Size()
+                                                         << " points, more than the supported 2^32 - 1.");
+  }
+  out.points.reserve(points->Size());
+  out.pointIds.reserve(points->Size());
+  IdentifierType maxId = 0;
+  for (auto it = points->Begin(); it != points->End(); ++it)
+  {
+    maxId = std::max<IdentifierType>(maxId, it.Index());
+  }
+  constexpr std::uint32_t       missing = std::numeric_limits<std::uint32_t>::max();
+  const bool                    dense = maxId < 4 * static_cast<IdentifierType>(points->Size()) + 1024;
+  std::vector<std::uint32_t>    denseMap(dense ? maxId + 1 : 0, missing);
+  std::unordered_map<IdentifierType, std::uint32_t> sparseMap;
+  for (auto it = points->Begin(); it != points->End(); ++it)
+  {
+    const auto index = static_cast<std::uint32_t>(out.points.size());
+    if (dense)
+    {
+      denseMap[it.Index()] = index;
+    }
+    else
+    {
+      sparseMap.emplace(it.Index(), index);
+    }
+    out.points.push_back(ToVec3(it.Value()));
+    out.pointIds.push_back(it.Index());
+  }
+  auto lookup = [&](IdentifierType id, IdentifierType cellId) -> std::uint32_t {
+    std::uint32_t index = missing;
+    if (dense)
+    {
+      if (id <= maxId)
+      {
+        index = denseMap[id];
+      }
+    }
+    else
+    {
+      const auto found = sparseMap.find(id);
+      if (found != sparseMap.end())
+      {
+        index = found->second;
+      }
+    }
+    if (index == missing)
+    {
+      itkGenericExceptionMacro("MeshExtraction: cell " << cellId << " references point " << id
+                                                       << ", which the mesh does not have.");
+    }
+    return index;
+  };
+
+  const auto * cells = mesh.GetCells();
+  if (cells == nullptr)
+  {
+    return out;
+  }
+  out.triangles.reserve(cells->Size());
+  out.cellIds.reserve(cells->Size());
+  for (auto it = cells->Begin(); it != cells->End(); ++it)
+  {
+    const auto * cell = it.Value();
+    if (cell == nullptr)
+    {
+      continue;
+    }
+    const auto type = cell->GetType();
+    if (type == CellGeometryEnum::VERTEX_CELL || type == CellGeometryEnum::LINE_CELL ||
+        type == CellGeometryEnum::QUADRATIC_EDGE_CELL)
+    {
+      ++out.numberOfIgnoredCells;
+      continue;
+    }
+    const auto n = cell->GetNumberOfPoints();
+    if (n != 3 && n != 4)
+    {
+      itkGenericExceptionMacro("MeshExtraction: cell " << it.Index() << " is a polygon with " << n
+                                                       << " points; only triangles and quadrilaterals "
+                                                          "(split along the shorter diagonal) are measured.");
+    }
+    std::uint32_t ids[4];
+    unsigned int  k = 0;
+    for (auto p = cell->PointIdsBegin(); p != cell->PointIdsEnd() && k < 4; ++p)
+    {
+      ids[k++] = lookup(*p, it.Index());
+    }
+    if (n == 3)
+    {
+      out.triangles.push_back({ ids[0], ids[1], ids[2] });
+      out.cellIds.push_back(it.Index());
+    }
+    else
+    {
+      TriangleIndices t0;
+      TriangleIndices t1;
+      SplitQuad(out, ids, t0, t1);
+      out.triangles.push_back(t0);
+      out.triangles.push_back(t1);
+      out.cellIds.push_back(it.Index());
+      out.cellIds.push_back(it.Index());
+      ++out.numberOfSplitQuads;
+    }
+  }
+  return out;
+}
+
+/** Fill an empty itk::Mesh or itk::QuadEdgeMesh with the points and triangles of an
+ * indexed mesh (point i gets identifier i). For a QuadEdgeMesh, a triangle the
+ * quad-edge structure refuses (non-manifold edge, inconsistent orientation) raises
+ * an itk::ExceptionObject instead of being dropped silently. */
+template <typename TMesh>
+void
+FillMesh(const IndexedTriangleMesh & in, TMesh & mesh)
+{
+  using PointType = typename TMesh::PointType;
+  using CoordinateType = typename PointType::ValueType;
+  mesh.GetPoints()->Reserve(in.points.size());
+  for (std::size_t i = 0; i < in.points.size(); ++i)
+  {
+    PointType p;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      p[d] = static_cast<CoordinateType>(in.points[i][d]);
+    }
+    mesh.SetPoint(static_cast<typename TMesh::PointIdentifier>(i), p);
+  }
+  if constexpr (Detail::IsQuadEdgeMesh<TMesh>::value)
+  {
+    for (std::size_t f = 0; f < in.triangles.size(); ++f)
+    {
+      const auto & t = in.triangles[f];
+      if (mesh.AddFaceTriangle(t[0], t[1], t[2]) == nullptr)
+      {
+        itkGenericExceptionMacro("MeshExtraction: the QuadEdgeMesh refused triangle "
+                                 << f << " (" << t[0] << ", " << t[1] << ", " << t[2]
+                                 << "): it would make a non-manifold edge, reuse an edge in the same "
+                                    "direction, or repeat a vertex.");
+      }
+    }
+  }
+  else
+  {
+    using CellType = typename TMesh::CellType;
+    using TriangleCellType = TriangleCell<CellType>;
+    for (std::size_t f = 0; f < in.triangles.size(); ++f)
+    {
+      typename CellType::CellAutoPointer cell;
+      cell.TakeOwnership(new TriangleCellType);
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        cell->SetPointId(k, in.triangles[f][k]);
+      }
+      mesh.SetCell(static_cast<typename TMesh::CellIdentifier>(f), cell);
+    }
+  }
+}
+
+} // namespace MeshExtraction
+} // namespace itk
+
+#endif

@@ -1,0 +1,75 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionPredicates_h
+#define itkMeshExtractionPredicates_h
+
+#include "MeshExtractionExport.h"
+#include "itkMeshExtractionTriangleGeometry.h"
+#include "itkIntTypes.h"
+
+namespace itk
+{
+namespace MeshExtraction
+{
+/** \brief Exact geometric predicates on double coordinates.
+ *
+ * Each predicate first evaluates its determinant in floating point with a
+ * forward error bound (Shewchuk's static filter); only when the sign is not
+ * certified does it recompute the determinant exactly, as a sum of exact
+ * products held in a floating-point expansion. The sign returned is therefore
+ * always the sign of the exact determinant of the given doubles.
+ *
+ * \ingroup MeshExtraction
+ */
+
+/** Sign of det[b-a, c-a] in 2-D: +1 if (a, b, c) turns counter-clockwise, -1 if
+ * clockwise, 0 if the three points are collinear. */
+MeshExtraction_EXPORT int
+Orient2D(const double a[2], const double b[2], const double c[2]);
+
+/** Sign of det[b-a, c-a, d-a] = ((b-a) x (c-a)) . (d-a): +1 if d lies on the side
+ * the normal of the counter-clockwise triangle (a, b, c) points to, -1 on the other
+ * side, 0 if the four points are coplanar. */
+MeshExtraction_EXPORT int
+Orient3D(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d);
+
+/** True if a, b and c are collinear (or coincide), decided exactly. */
+MeshExtraction_EXPORT bool
+IsTriangleDegenerateExact(const Vec3 & a, const Vec3 & b, const Vec3 & c);
+
+/** True if the closed segment [a, b] and the closed, non-degenerate triangle
+ * (p, q, r) share at least one point. Exact. */
+MeshExtraction_EXPORT bool
+SegmentIntersectsTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & p, const Vec3 & q, const Vec3 & r);
+
+/** True if two closed, non-degenerate triangles share at least one point. Exact. */
+MeshExtraction_EXPORT bool
+TrianglesIntersect(const Vec3 P[3], const Vec3 Q[3]);
+
+/** Self-intersection test for two faces of one mesh: true if the triangles share a
+ * point other than the vertices and edge they have in common by vertex id (so mesh
+ * neighbours touching along their common edge or vertex do not count, as in CGAL's
+ * "strict" self-intersections). Identical vertex triples always count. Both
+ * triangles must be non-degenerate. Exact. */
+MeshExtraction_EXPORT bool
+FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], const IdentifierType qid[3]);
+
+} // namespace MeshExtraction
+} // namespace itk
+
+#endif

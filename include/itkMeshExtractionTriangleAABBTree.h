@@ -1,0 +1,253 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionTriangleAABBTree_h
+#define itkMeshExtractionTriangleAABBTree_h
+
+#include "MeshExtractionExport.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+/** \brief Axis-aligned box in double precision. \ingroup MeshExtraction */
+struct AxisAlignedBox
+{
+  double lower[3]{ std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                   std::numeric_limits<double>::max() };
+  double upper[3]{ std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(),
+                   std::numeric_limits<double>::lowest() };
+
+  void
+  Add(const Vec3 & p)
+  {
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      lower[d] = std::min(lower[d], p[d]);
+      upper[d] = std::max(upper[d], p[d]);
+    }
+  }
+  void
+  Add(const AxisAlignedBox & b)
+  {
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      lower[d] = std::min(lower[d], b.lower[d]);
+      upper[d] = std::max(upper[d], b.upper[d]);
+    }
+  }
+  bool
+  Overlaps(const AxisAlignedBox & b) const
+  {
+    return lower[0] <= b.upper[0] && b.lower[0] <= upper[0] && lower[1] <= b.upper[1] && b.lower[1] <= upper[1] &&
+           lower[2] <= b.upper[2] && b.lower[2] <= upper[2];
+  }
+  double
+  SquaredDistance(const Vec3 & p) const
+  {
+    double s = 0.0;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      const double e = std::max({ lower[d] - p[d], 0.0, p[d] - upper[d] });
+      s += e * e;
+    }
+    return s;
+  }
+  /** Entry parameter of the ray origin + t * inverseDirection^-1 into the box, or
+   * +infinity if the ray misses it. */
+  double
+  RayEntry(const Vec3 & origin, const double inverseDirection[3]) const
+  {
+    double tNear = 0.0;
+    double tFar = std::numeric_limits<double>::infinity();
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      double t0 = (lower[d] - origin[d]) * inverseDirection[d];
+      double t1 = (upper[d] - origin[d]) * inverseDirection[d];
+      if (t0 > t1)
+      {
+        std::swap(t0, t1);
+      }
+      if (t0 != t0 || t1 != t1) // 0 * inf: the ray is in the slab's plane
+      {
+        if (origin[d] < lower[d] || origin[d] > upper[d])
+        {
+          return std::numeric_limits<double>::infinity();
+        }
+        continue;
+      }
+      tNear = std::max(tNear, t0);
+      tFar = std::min(tFar, t1);
+      if (tNear > tFar)
+      {
+        return std::numeric_limits<double>::infinity();
+      }
+    }
+    return tNear;
+  }
+};
+
+inline AxisAlignedBox
+TriangleBox(const IndexedTriangleMesh & mesh, std::uint32_t triangle)
+{
+  AxisAlignedBox b;
+  for (std::uint32_t v : mesh.triangles[triangle])
+  {
+    b.Add(mesh.points[v]);
+  }
+  return b;
+}
+
+/** \brief Bounding-volume hierarchy of axis-aligned boxes over the triangles of
+ * an IndexedTriangleMesh: nearest-triangle queries (exact point-to-triangle
+ * distance), box-overlap and ray queries.
+ *
+ * Built top-down by median splits along the widest axis of the triangle centroids,
+ * stored depth-first in one array. The tree keeps a pointer to the mesh, which
+ * must outlive it. Queries are const and thread-safe.
+ * \ingroup MeshExtraction
+ */
+class MeshExtraction_EXPORT TriangleAABBTree
+{
+public:
+  struct Nearest
+  {
+    std::uint32_t triangle{ std::numeric_limits<std::uint32_t>::max() };
+    double        squaredDistance{ std::numeric_limits<double>::infinity() };
+    Vec3          point{ 0.0 };
+  };
+
+  TriangleAABBTree() = default;
+
+  /** Build over all triangles, or over `subset` (triangle indices) if given. */
+  void
+  Build(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * subset = nullptr);
+
+  bool
+  IsEmpty() const
+  {
+    return m_Nodes.empty();
+  }
+
+  /** Closest point of the mesh to p (over the triangles in the tree). */
+  Nearest
+  FindNearest(const Vec3 & p) const;
+
+  /** Calls visit(triangle) for every triangle whose box overlaps `box`. */
+  template <typename TVisitor>
+  void
+  VisitOverlapping(const AxisAlignedBox & box, TVisitor && visit) const
+  {
+    if (m_Nodes.empty())
+    {
+      return;
+    }
+    std::uint32_t stack[128];
+    unsigned int  top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+      const Node & node = m_Nodes[stack[--top]];
+      if (!node.box.Overlaps(box))
+      {
+        continue;
+      }
+      if (node.count > 0)
+      {
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+        {
+          if (m_Boxes[i].Overlaps(box))
+          {
+            visit(m_Triangles[i]);
+          }
+        }
+      }
+      else
+      {
+        stack[top++] = node.first;
+        stack[top++] = node.first + 1;
+      }
+    }
+  }
+
+  /** Calls visit(triangle) for every triangle whose box the ray origin + t d,
+   * t >= 0, enters. */
+  template <typename TVisitor>
+  void
+  VisitRay(const Vec3 & origin, const Vec3 & direction, TVisitor && visit) const
+  {
+    if (m_Nodes.empty())
+    {
+      return;
+    }
+    double inverse[3];
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      inverse[d] = 1.0 / direction[d];
+    }
+    std::uint32_t stack[128];
+    unsigned int  top = 0;
+    stack[top++] = 0;
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    while (top > 0)
+    {
+      const Node & node = m_Nodes[stack[--top]];
+      if (node.box.RayEntry(origin, inverse) == infinity)
+      {
+        continue;
+      }
+      if (node.count > 0)
+      {
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+        {
+          if (m_Boxes[i].RayEntry(origin, inverse) != infinity)
+          {
+            visit(m_Triangles[i]);
+          }
+        }
+      }
+      else
+      {
+        stack[top++] = node.first;
+        stack[top++] = node.first + 1;
+      }
+    }
+  }
+
+private:
+  struct Node
+  {
+    AxisAlignedBox box;
+    std::uint32_t  first{ 0 }; ///< leaf: first primitive slot; inner: index of the left child (right = left + 1)
+    std::uint32_t  count{ 0 }; ///< number of primitives; 0 for an inner node
+  };
+
+  const IndexedTriangleMesh *  m_Mesh{ nullptr };
+  std::vector<Node>            m_Nodes;
+  std::vector<std::uint32_t>   m_Triangles; ///< triangle of each primitive slot
+  std::vector<AxisAlignedBox>  m_Boxes;     ///< box of each primitive slot
+};
+
+} // namespace MeshExtraction
+} // namespace itk
+
+#endif

@@ -1,0 +1,344 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionTriangleGeometry_h
+#define itkMeshExtractionTriangleGeometry_h
+
+#include "itkVector.h"
+#include "itkMath.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace itk
+{
+/** \namespace itk::MeshExtraction
+ * \brief Building blocks shared by the MeshExtraction filters and calculators.
+ *
+ * All triangle geometry of the module lives in this header: angles, areas,
+ * normals, the quality measures of the thesis (section 4.2.3), closest point on a
+ * triangle and ray-triangle intersection. Every filter and calculator calls these
+ * functions so that a triangle is measured the same way everywhere.
+ * Computation is in double precision whatever the mesh's coordinate type.
+ *
+ * \ingroup MeshExtraction
+ */
+namespace MeshExtraction
+{
+using Vec3 = Vector<double, 3>;
+
+inline Vec3
+MakeVec3(double x, double y, double z)
+{
+  Vec3 v;
+  v[0] = x;
+  v[1] = y;
+  v[2] = z;
+  return v;
+}
+
+/** Any point-like object with operator[] (itk::Point of float or double, ...). */
+template <typename TPoint>
+inline Vec3
+ToVec3(const TPoint & p)
+{
+  return MakeVec3(static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]));
+}
+
+inline double
+Dot(const Vec3 & a, const Vec3 & b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+inline Vec3
+Cross(const Vec3 & a, const Vec3 & b)
+{
+  return MakeVec3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
+}
+
+inline double
+SquaredNorm(const Vec3 & a)
+{
+  return Dot(a, a);
+}
+
+inline double
+Norm(const Vec3 & a)
+{
+  return std::sqrt(Dot(a, a));
+}
+
+/** Angle in radians between two vectors, in [0, pi]; 0 when either is zero.
+ * atan2(|u x v|, u.v) stays accurate near 0 and pi, where acos does not. */
+inline double
+AngleBetween(const Vec3 & u, const Vec3 & v)
+{
+  return std::atan2(Norm(Cross(u, v)), Dot(u, v));
+}
+
+/** Interior angle at `apex` of the triangle (apex, p, q). */
+inline double
+AngleAtVertex(const Vec3 & apex, const Vec3 & p, const Vec3 & q)
+{
+  return AngleBetween(p - apex, q - apex);
+}
+
+/** Un-normalised normal (b-a)x(c-a): its length is twice the area, its direction
+ * follows the counter-clockwise order a, b, c (right-hand rule). */
+inline Vec3
+TriangleNormal(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  return Cross(b - a, c - a);
+}
+
+inline double
+TriangleArea(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  return 0.5 * Norm(TriangleNormal(a, b, c));
+}
+
+inline Vec3
+TriangleCentroid(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  return (a + b + c) * (1.0 / 3.0);
+}
+
+/** Unit normal, or the zero vector for a degenerate triangle. */
+inline Vec3
+TriangleUnitNormal(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  Vec3         n = TriangleNormal(a, b, c);
+  const double l = Norm(n);
+  if (l > 0.0)
+  {
+    n *= 1.0 / l;
+  }
+  return n;
+}
+
+/** The measures of one triangle (thesis section 4.2.3 and chapter 3).
+ * edgeLength[i] is the edge opposite vertex i; angle[i] is the angle at vertex i. */
+struct TriangleMeasures
+{
+  double edgeLength[3];
+  double angle[3];
+  double area;
+  double qLength; ///< shortest / longest edge
+  double qAngle;  ///< smallest / largest angle
+  double qArea;   ///< 4 sqrt(3) A / (e1^2 + e2^2 + e3^2)
+  double minAngle;
+  double maxAngle;
+};
+
+/** Measure a triangle. A triangle with a zero-length edge gets qLength = qAngle =
+ * qArea = 0, minimum angle 0 and maximum angle pi. */
+inline TriangleMeasures
+MeasureTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  TriangleMeasures m{};
+  const Vec3       ab = b - a;
+  const Vec3       bc = c - b;
+  const Vec3       ca = a - c;
+  m.edgeLength[0] = Norm(bc);
+  m.edgeLength[1] = Norm(ca);
+  m.edgeLength[2] = Norm(ab);
+  const double twiceArea = Norm(Cross(ab, -ca));
+  m.area = 0.5 * twiceArea;
+  const double sumSq = m.edgeLength[0] * m.edgeLength[0] + m.edgeLength[1] * m.edgeLength[1] +
+                       m.edgeLength[2] * m.edgeLength[2];
+  const double minEdge = std::min({ m.edgeLength[0], m.edgeLength[1], m.edgeLength[2] });
+  const double maxEdge = std::max({ m.edgeLength[0], m.edgeLength[1], m.edgeLength[2] });
+  if (!(minEdge > 0.0))
+  {
+    m.angle[0] = m.angle[1] = m.angle[2] = 0.0;
+    for (unsigned i = 0; i < 3; ++i)
+    {
+      if (m.edgeLength[i] > 0.0)
+      {
+        m.angle[i] = itk::Math::pi;
+      }
+    }
+    m.minAngle = 0.0;
+    m.maxAngle = itk::Math::pi;
+    return m;
+  }
+  m.angle[0] = AngleBetween(ab, -ca);
+  m.angle[1] = AngleBetween(bc, -ab);
+  m.angle[2] = AngleBetween(ca, -bc);
+  m.minAngle = std::min({ m.angle[0], m.angle[1], m.angle[2] });
+  m.maxAngle = std::max({ m.angle[0], m.angle[1], m.angle[2] });
+  m.qLength = minEdge / maxEdge;
+  m.qAngle = m.maxAngle > 0.0 ? m.minAngle / m.maxAngle : 0.0;
+  m.qArea = 4.0 * std::sqrt(3.0) * m.area / sumSq;
+  // Rounding can push an equilateral triangle a hair above 1.
+  m.qAngle = std::min(m.qAngle, 1.0);
+  m.qArea = std::min(m.qArea, 1.0);
+  return m;
+}
+
+/** Closest point on segment [a, b] to p. */
+inline Vec3
+ClosestPointOnSegment(const Vec3 & p, const Vec3 & a, const Vec3 & b)
+{
+  const Vec3   ab = b - a;
+  const double l2 = SquaredNorm(ab);
+  if (!(l2 > 0.0))
+  {
+    return a;
+  }
+  const double t = std::clamp(Dot(p - a, ab) / l2, 0.0, 1.0);
+  return a + ab * t;
+}
+
+/** Closest point on the closed triangle (a, b, c) to p, found by the Voronoi-region
+ * classification of Ericson, "Real-Time Collision Detection", section 5.1.5.
+ * Degenerate triangles fall back to the closest of the three edges. */
+inline Vec3
+ClosestPointOnTriangle(const Vec3 & p, const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  const Vec3   ab = b - a;
+  const Vec3   ac = c - a;
+  const Vec3   ap = p - a;
+  const double d1 = Dot(ab, ap);
+  const double d2 = Dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0)
+  {
+    return a;
+  }
+  const Vec3   bp = p - b;
+  const double d3 = Dot(ab, bp);
+  const double d4 = Dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3)
+  {
+    return b;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0)
+  {
+    return a + ab * (d1 / (d1 - d3));
+  }
+  const Vec3   cp = p - c;
+  const double d5 = Dot(ab, cp);
+  const double d6 = Dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6)
+  {
+    return c;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0)
+  {
+    return a + ac * (d2 / (d2 - d6));
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
+  {
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const double sum = va + vb + vc;
+  if (sum > 0.0)
+  {
+    const double v = vb / sum;
+    const double w = vc / sum;
+    return a + ab * v + ac * w;
+  }
+  // Degenerate (collinear or coincident) triangle: closest of the three edges.
+  const Vec3   q0 = ClosestPointOnSegment(p, a, b);
+  const Vec3   q1 = ClosestPointOnSegment(p, b, c);
+  const Vec3   q2 = ClosestPointOnSegment(p, c, a);
+  const double e0 = SquaredNorm(p - q0);
+  const double e1 = SquaredNorm(p - q1);
+  const double e2 = SquaredNorm(p - q2);
+  if (e0 <= e1 && e0 <= e2)
+  {
+    return q0;
+  }
+  return e1 <= e2 ? q1 : q2;
+}
+
+inline double
+SquaredDistancePointTriangle(const Vec3 & p, const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  return SquaredNorm(p - ClosestPointOnTriangle(p, a, b, c));
+}
+
+/** Result of a ray-triangle test. `ambiguous` flags hits too close to an edge, a
+ * vertex, or a ray parallel to the plane to be counted reliably (callers retry with
+ * another direction). */
+struct RayTriangleHit
+{
+  bool   hit{ false };
+  bool   ambiguous{ false };
+  double t{ 0.0 };
+};
+
+/** Moller-Trumbore ray/triangle test for t > tMin, with a relative tolerance on the
+ * barycentric coordinates that marks grazing hits as ambiguous. */
+inline RayTriangleHit
+IntersectRayTriangle(const Vec3 & origin,
+                     const Vec3 & direction,
+                     const Vec3 & a,
+                     const Vec3 & b,
+                     const Vec3 & c,
+                     double       tMin,
+                     double       tolerance = 1e-9)
+{
+  RayTriangleHit r;
+  const Vec3     e1 = b - a;
+  const Vec3     e2 = c - a;
+  const Vec3     pv = Cross(direction, e2);
+  const double   det = Dot(e1, pv);
+  const double   scale = Norm(e1) * Norm(e2) * Norm(direction);
+  if (!(scale > 0.0))
+  {
+    return r; // degenerate triangle: it has no interior to cross
+  }
+  const Vec3   tv = origin - a;
+  const Vec3   qv = Cross(tv, e1);
+  if (std::abs(det) <= tolerance * scale)
+  {
+    // Parallel to the plane: ambiguous only if the ray lies in the plane.
+    const Vec3 n = Cross(e1, e2);
+    if (std::abs(Dot(tv, n)) <= tolerance * Norm(n) * (Norm(tv) + 1e-300))
+    {
+      r.ambiguous = true;
+    }
+    return r;
+  }
+  const double inv = 1.0 / det;
+  const double u = Dot(tv, pv) * inv;
+  const double v = Dot(direction, qv) * inv;
+  const double t = Dot(e2, qv) * inv;
+  const double tol = 1e-7;
+  if (u < -tol || v < -tol || u + v > 1.0 + tol || t <= tMin)
+  {
+    return r;
+  }
+  if (u < tol || v < tol || u + v > 1.0 - tol)
+  {
+    r.ambiguous = true;
+    return r;
+  }
+  r.hit = true;
+  r.t = t;
+  return r;
+}
+
+} // namespace MeshExtraction
+} // namespace itk
+
+#endif

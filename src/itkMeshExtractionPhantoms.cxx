@@ -1,0 +1,412 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#include "itkMeshExtractionPhantoms.h"
+#include "itkMeshExtractionTriangleGeometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ostream>
+#include <sstream>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+namespace
+{
+struct ShapeName
+{
+  PhantomShape shape;
+  const char * name;
+};
+
+constexpr ShapeName ShapeNames[] = {
+  { PhantomShape::Plane, "plane" },
+  { PhantomShape::Sphere, "sphere" },
+  { PhantomShape::TwoSpheres, "two-spheres" },
+  { PhantomShape::Chapter4Sphere, "chapter4-sphere" },
+  { PhantomShape::Ellipsoid, "ellipsoid" },
+  { PhantomShape::IndentedSphere, "indented-sphere" },
+  { PhantomShape::Torus, "torus" },
+  { PhantomShape::ThinPlate, "thin-plate" },
+  { PhantomShape::NarrowCleft, "narrow-cleft" },
+};
+
+using PointType = ImplicitSurfaceFunction::InputType;
+using VectorType = ImplicitSurfaceFunction::VectorType;
+using MatrixType = ImplicitSurfaceFunction::MatrixType;
+
+constexpr double DegreesToRadians = 3.14159265358979323846 / 180.0;
+
+/** The grid's direction, checked orthogonal within 1e-4 and orthonormalised. */
+MatrixType
+GridFrame(const PhantomGrid & grid)
+{
+  double maximumError = 0.0;
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      double dot = 0.0;
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        dot += grid.direction(k, i) * grid.direction(k, j);
+      }
+      const double error = std::abs(dot - (i == j ? 1.0 : 0.0));
+      maximumError = std::isfinite(error) ? std::max(maximumError, error) : 1e300;
+    }
+  }
+  if (!(maximumError <= 1e-4))
+  {
+    itkGenericExceptionMacro(<< "PhantomGrid direction must be orthogonal (max |D^T D - I| <= 1e-4), got\n"
+                             << grid.direction << "with max |D^T D - I| = " << maximumError);
+  }
+  Vec3 c[3];
+  for (unsigned int j = 0; j < 3; ++j)
+  {
+    c[j] = MakeVec3(grid.direction(0, j), grid.direction(1, j), grid.direction(2, j));
+  }
+  c[0] /= Norm(c[0]);
+  c[1] -= c[0] * Dot(c[1], c[0]);
+  c[1] /= Norm(c[1]);
+  c[2] -= c[0] * Dot(c[2], c[0]);
+  c[2] -= c[1] * Dot(c[2], c[1]);
+  c[2] /= Norm(c[2]);
+  MatrixType frame;
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      frame(i, j) = c[j][i];
+    }
+  }
+  return frame;
+}
+
+void
+CheckGrid(const PhantomGrid & grid)
+{
+  for (unsigned int k = 0; k < 3; ++k)
+  {
+    if (grid.size[k] == 0)
+    {
+      itkGenericExceptionMacro(<< "PhantomGrid size must be > 0 along every axis, got " << grid.size);
+    }
+    if (!(std::isfinite(grid.spacing[k]) && grid.spacing[k] > 0.0))
+    {
+      itkGenericExceptionMacro(<< "PhantomGrid spacing must be finite and > 0 along every axis, got "
+                               << grid.spacing);
+    }
+    if (!std::isfinite(grid.origin[k]))
+    {
+      itkGenericExceptionMacro(<< "PhantomGrid origin must be finite, got " << grid.origin);
+    }
+  }
+}
+
+VectorType
+ToVector(const Vec3 & v)
+{
+  VectorType out;
+  out[0] = v[0];
+  out[1] = v[1];
+  out[2] = v[2];
+  return out;
+}
+
+/** A direction given in the grid's frame, normalised, in physical space. */
+Vec3
+GridDirection(const MatrixType & frame, double x, double y, double z)
+{
+  Vec3 v = MakeVec3(x, y, z);
+  v /= Norm(v);
+  return ToVec3(frame * ToVector(v));
+}
+
+MatrixType
+RotationZ(double degrees)
+{
+  const double a = degrees * DegreesToRadians;
+  MatrixType   r;
+  r.SetIdentity();
+  r(0, 0) = std::cos(a);
+  r(0, 1) = -std::sin(a);
+  r(1, 0) = std::sin(a);
+  r(1, 1) = std::cos(a);
+  return r;
+}
+
+MatrixType
+RotationX(double degrees)
+{
+  const double a = degrees * DegreesToRadians;
+  MatrixType   r;
+  r.SetIdentity();
+  r(1, 1) = std::cos(a);
+  r(1, 2) = -std::sin(a);
+  r(2, 1) = std::sin(a);
+  r(2, 2) = std::cos(a);
+  return r;
+}
+
+PointType
+Offset(const PointType & p, const Vec3 & v)
+{
+  PointType out;
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    out[i] = p[i] + v[i];
+  }
+  return out;
+}
+
+VectorType
+MakeVector(double x, double y, double z)
+{
+  return ToVector(MakeVec3(x, y, z));
+}
+} // namespace
+
+std::ostream &
+operator<<(std::ostream & out, PhantomShape shape)
+{
+  return out << PhantomShapeName(shape);
+}
+
+std::string
+PhantomShapeName(PhantomShape shape)
+{
+  for (const ShapeName & entry : ShapeNames)
+  {
+    if (entry.shape == shape)
+    {
+      return entry.name;
+    }
+  }
+  return "INVALID PhantomShape " + std::to_string(static_cast<int>(shape));
+}
+
+PhantomShape
+PhantomShapeFromName(const std::string & name)
+{
+  for (const ShapeName & entry : ShapeNames)
+  {
+    if (name == entry.name)
+    {
+      return entry.shape;
+    }
+  }
+  itkGenericExceptionMacro(<< "Unknown phantom shape \"" << name << "\"; valid names are: " << PhantomShapeNameList());
+}
+
+std::vector<PhantomShape>
+AllPhantomShapes()
+{
+  std::vector<PhantomShape> shapes;
+  for (const ShapeName & entry : ShapeNames)
+  {
+    shapes.push_back(entry.shape);
+  }
+  return shapes;
+}
+
+std::string
+PhantomShapeNameList()
+{
+  std::string list;
+  for (const ShapeName & entry : ShapeNames)
+  {
+    if (!list.empty())
+    {
+      list += ", ";
+    }
+    list += entry.name;
+  }
+  return list;
+}
+
+PhantomGrid::PhantomGrid()
+{
+  size.Fill(64);
+  spacing.Fill(1.0);
+  origin.Fill(0.0);
+  direction.SetIdentity();
+}
+
+PhantomGrid
+DefaultPhantomGrid(PhantomShape shape)
+{
+  PhantomGrid grid;
+  if (shape == PhantomShape::Chapter4Sphere)
+  {
+    grid.size.Fill(100);
+  }
+  return grid;
+}
+
+Point<double, 3>
+PhantomGridCenter(const PhantomGrid & grid)
+{
+  VectorType halfDiagonal;
+  for (unsigned int k = 0; k < 3; ++k)
+  {
+    halfDiagonal[k] = 0.5 * grid.spacing[k] * (static_cast<double>(grid.size[k]) - 1.0);
+  }
+  return grid.origin + grid.direction * halfDiagonal;
+}
+
+double
+PhantomGridSmallestExtent(const PhantomGrid & grid)
+{
+  double extent = static_cast<double>(grid.size[0]) * grid.spacing[0];
+  for (unsigned int k = 1; k < 3; ++k)
+  {
+    extent = std::min(extent, static_cast<double>(grid.size[k]) * grid.spacing[k]);
+  }
+  return extent;
+}
+
+ImplicitSurfaceFunction::Pointer
+MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
+{
+  CheckGrid(grid);
+  const MatrixType frame = GridFrame(grid);
+  const PointType  center = PhantomGridCenter(grid);
+  const double     extent = PhantomGridSmallestExtent(grid);
+  const double     smallestSpacing = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
+
+  switch (shape)
+  {
+    case PhantomShape::Plane:
+    {
+      const Vec3 normal = GridDirection(frame, 1.0, 2.0, 3.0);
+      auto       plane = PlaneImplicitSurface::New();
+      plane->SetNormal(ToVector(normal));
+      plane->SetPoint(Offset(center, normal * (0.5 / std::sqrt(14.0) * smallestSpacing)));
+      return plane.GetPointer();
+    }
+    case PhantomShape::Sphere:
+    {
+      auto sphere = SphereImplicitSurface::New();
+      sphere->SetCenter(center);
+      sphere->SetRadius(0.3 * extent);
+      return sphere.GetPointer();
+    }
+    case PhantomShape::TwoSpheres:
+    {
+      const double radius = 0.25 * extent;
+      const Vec3   axis = GridDirection(frame, 1.0, 1.0, 1.0);
+      auto         spheres = SphereUnionImplicitSurface::New();
+      spheres->AddSphere(Offset(center, axis * (-0.5 * radius)), radius);
+      spheres->AddSphere(Offset(center, axis * (0.5 * radius)), radius);
+      return spheres.GetPointer();
+    }
+    case PhantomShape::Chapter4Sphere:
+    {
+      auto sphere = SphereImplicitSurface::New();
+      sphere->SetCenter(center);
+      sphere->SetRadius(0.25 * extent);
+      return sphere.GetPointer();
+    }
+    case PhantomShape::Ellipsoid:
+    {
+      auto ellipsoid = EllipsoidImplicitSurface::New();
+      ellipsoid->SetCenter(center);
+      ellipsoid->SetSemiAxes(MakeVector(0.35 * extent, 0.25 * extent, 0.15 * extent));
+      ellipsoid->SetRotation(frame * RotationZ(30.0) * RotationX(20.0));
+      return ellipsoid.GetPointer();
+    }
+    case PhantomShape::IndentedSphere:
+    {
+      const double radius = 0.3 * extent;
+      const Vec3   axis = GridDirection(frame, 1.0, 1.0, 1.0);
+      auto         indented = SphereDifferenceImplicitSurface::New();
+      indented->SetCenterA(center);
+      indented->SetRadiusA(radius);
+      indented->SetCenterB(Offset(center, axis * radius));
+      indented->SetRadiusB(0.5 * radius);
+      return indented.GetPointer();
+    }
+    case PhantomShape::Torus:
+    {
+      auto torus = TorusImplicitSurface::New();
+      torus->SetCenter(center);
+      torus->SetAxis(ToVector(GridDirection(frame, 1.0, 1.0, 4.0)));
+      torus->SetRadii(0.25 * extent, 0.1 * extent);
+      return torus.GetPointer();
+    }
+    case PhantomShape::ThinPlate:
+    {
+      // Local frame of the plate in grid coordinates: normal n, first edge along the
+      // grid's first axis projected onto the plate.
+      Vec3 n = MakeVec3(1.0, 2.0, 10.0);
+      n /= Norm(n);
+      Vec3 e0 = MakeVec3(1.0, 0.0, 0.0) - n * n[0];
+      e0 /= Norm(e0);
+      const Vec3 e1 = Cross(n, e0);
+      MatrixType local;
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        local(i, 0) = e0[i];
+        local(i, 1) = e1[i];
+        local(i, 2) = n[i];
+      }
+      auto plate = BoxImplicitSurface::New();
+      plate->SetCenter(center);
+      plate->SetHalfSizes(MakeVector(0.35 * extent, 0.35 * extent, smallestSpacing));
+      plate->SetRotation(frame * local);
+      return plate.GetPointer();
+    }
+    case PhantomShape::NarrowCleft:
+    {
+      auto cleft = NarrowCleftImplicitSurface::New();
+      cleft->SetCenter(center);
+      cleft->SetRotation(frame);
+      cleft->SetHalfSizes(MakeVector(0.3 * extent, 0.3 * extent, 0.2 * extent));
+      cleft->SetSlotWidth(1.5 * grid.spacing[0]);
+      cleft->SetSlotDepth(0.24 * extent);
+      cleft->VerifyParameters();
+      return cleft.GetPointer();
+    }
+  }
+  itkGenericExceptionMacro(<< "Unknown PhantomShape " << static_cast<int>(shape) << "; valid names are: "
+                           << PhantomShapeNameList());
+}
+
+PhantomImageParameters
+DefaultPhantomImageParameters(PhantomShape shape)
+{
+  PhantomImageParameters parameters;
+  if (shape == PhantomShape::Chapter4Sphere)
+  {
+    parameters.mode = MeshExtractionEnums::PhantomImage::BlurredStep;
+    parameters.insideValue = 100.0;
+    parameters.outsideValue = 0.0;
+    parameters.edgeWidth = 1.0;
+  }
+  return parameters;
+}
+
+MeshExtractionEnums::PhantomImage
+DefaultPhantomImageMode(PhantomShape shape)
+{
+  return DefaultPhantomImageParameters(shape).mode;
+}
+
+} // namespace MeshExtraction
+} // namespace itk

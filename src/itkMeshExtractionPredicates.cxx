@@ -1,0 +1,460 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#include "itkMeshExtractionPredicates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+namespace
+{
+// ---------------------------------------------------------------------------
+// Exact sums of products with floating-point expansions (Shewchuk, "Adaptive
+// precision floating-point arithmetic and fast robust geometric predicates",
+// 1997: TWO-SUM, TWO-PRODUCT via fused multiply-add, GROW-EXPANSION). An
+// expansion is a sum of non-overlapping doubles in increasing magnitude; its
+// sign is the sign of its largest (last non-zero) component.
+// ---------------------------------------------------------------------------
+inline void
+TwoSum(double a, double b, double & x, double & y)
+{
+  x = a + b;
+  const double bv = x - a;
+  const double av = x - bv;
+  y = (a - av) + (b - bv);
+}
+
+inline void
+TwoProduct(double a, double b, double & x, double & y)
+{
+  x = a * b;
+  y = std::fma(a, b, -x);
+}
+
+class ExactSum
+{
+public:
+  ExactSum() { m_Components.reserve(128); }
+
+  void
+  Add(double b)
+  {
+    if (b == 0.0)
+    {
+      return;
+    }
+    double       q = b;
+    std::size_t  out = 0;
+    for (double e : m_Components)
+    {
+      double sum;
+      double err;
+      TwoSum(q, e, sum, err);
+      q = sum;
+      if (err != 0.0)
+      {
+        m_Components[out++] = err;
+      }
+    }
+    m_Components.resize(out);
+    if (q != 0.0)
+    {
+      m_Components.push_back(q);
+    }
+  }
+
+  /** Adds sign * x * y exactly. */
+  void
+  AddProduct(double sign, double x, double y)
+  {
+    double p;
+    double e;
+    TwoProduct(x, y, p, e);
+    Add(sign * p);
+    Add(sign * e);
+  }
+
+  /** Adds sign * x * y * z exactly. */
+  void
+  AddProduct(double sign, double x, double y, double z)
+  {
+    double p;
+    double e;
+    TwoProduct(x, y, p, e);
+    double p1;
+    double p2;
+    double e1;
+    double e2;
+    TwoProduct(p, z, p1, p2);
+    TwoProduct(e, z, e1, e2);
+    Add(sign * p1);
+    Add(sign * p2);
+    Add(sign * e1);
+    Add(sign * e2);
+  }
+
+  int
+  Sign() const
+  {
+    if (m_Components.empty())
+    {
+      return 0;
+    }
+    return m_Components.back() > 0.0 ? 1 : -1;
+  }
+
+private:
+  std::vector<double> m_Components;
+};
+
+constexpr double Epsilon = 1.1102230246251565e-16; // 2^-53
+// Static filter bounds (Shewchuk's ccwerrboundA and o3derrboundA, rounded up).
+constexpr double Orient2DBound = (3.0 + 16.0 * Epsilon) * Epsilon * 1.0000001;
+constexpr double Orient3DBound = (7.0 + 56.0 * Epsilon) * Epsilon * 1.0000001;
+
+inline int
+SignOf(double v)
+{
+  return (v > 0.0) - (v < 0.0);
+}
+
+// det3 of the rows u, v, w, added exactly with the given sign.
+void
+AddDet3(ExactSum & s, double sign, const Vec3 & u, const Vec3 & v, const Vec3 & w)
+{
+  s.AddProduct(sign, u[0], v[1], w[2]);
+  s.AddProduct(-sign, u[0], v[2], w[1]);
+  s.AddProduct(-sign, u[1], v[0], w[2]);
+  s.AddProduct(sign, u[1], v[2], w[0]);
+  s.AddProduct(sign, u[2], v[0], w[1]);
+  s.AddProduct(-sign, u[2], v[1], w[0]);
+}
+
+// ---------------------------------------------------------------------------
+// 2-D helpers on the projection of a plane onto a coordinate plane.
+// ---------------------------------------------------------------------------
+struct Projection
+{
+  unsigned int u;
+  unsigned int v;
+};
+
+inline void
+Project(const Vec3 & p, const Projection & pr, double out[2])
+{
+  out[0] = p[pr.u];
+  out[1] = p[pr.v];
+}
+
+/** A coordinate plane onto which the non-degenerate triangle (a, b, c) projects
+ * to a non-degenerate triangle. Returns false if none does (degenerate). */
+bool
+ChooseProjection(const Vec3 & a, const Vec3 & b, const Vec3 & c, Projection & pr)
+{
+  const Vec3   n = TriangleNormal(a, b, c);
+  unsigned int order[3] = { 0, 1, 2 };
+  std::sort(order, order + 3, [&n](unsigned i, unsigned j) { return std::abs(n[i]) > std::abs(n[j]); });
+  for (unsigned int drop : order)
+  {
+    const Projection candidate{ (drop + 1) % 3, (drop + 2) % 3 };
+    double           pa[2];
+    double           pb[2];
+    double           pc[2];
+    Project(a, candidate, pa);
+    Project(b, candidate, pb);
+    Project(c, candidate, pc);
+    if (Orient2D(pa, pb, pc) != 0)
+    {
+      pr = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool
+OnSegment2D(const double p[2], const double a[2], const double b[2])
+{
+  // p is known to be collinear with a and b.
+  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= p[1] &&
+         p[1] <= std::max(a[1], b[1]);
+}
+
+bool
+SegmentsIntersect2D(const double a[2], const double b[2], const double c[2], const double d[2])
+{
+  const int o1 = Orient2D(a, b, c);
+  const int o2 = Orient2D(a, b, d);
+  const int o3 = Orient2D(c, d, a);
+  const int o4 = Orient2D(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0)
+  {
+    return true;
+  }
+  return (o1 == 0 && OnSegment2D(c, a, b)) || (o2 == 0 && OnSegment2D(d, a, b)) || (o3 == 0 && OnSegment2D(a, c, d)) ||
+         (o4 == 0 && OnSegment2D(b, c, d));
+}
+
+bool
+PointInTriangle2D(const double p[2], const double a[2], const double b[2], const double c[2])
+{
+  const int s = Orient2D(a, b, c);
+  return Orient2D(a, b, p) * s >= 0 && Orient2D(b, c, p) * s >= 0 && Orient2D(c, a, p) * s >= 0;
+}
+
+bool
+SegmentIntersectsTriangle2D(const double a[2], const double b[2], const double t[3][2])
+{
+  return PointInTriangle2D(a, t[0], t[1], t[2]) || PointInTriangle2D(b, t[0], t[1], t[2]) ||
+         SegmentsIntersect2D(a, b, t[0], t[1]) || SegmentsIntersect2D(a, b, t[1], t[2]) ||
+         SegmentsIntersect2D(a, b, t[2], t[0]);
+}
+
+/** With `a` coplanar with the triangle (v, c, d): does the direction a - v point
+ * into the closed angle of that triangle at v? (a != v, triangle non-degenerate.) */
+bool
+DirectionInWedge(const Vec3 & a, const Vec3 & v, const Vec3 & c, const Vec3 & d)
+{
+  Projection pr{};
+  if (!ChooseProjection(v, c, d, pr))
+  {
+    return false;
+  }
+  double pv[2];
+  double pc[2];
+  double pd[2];
+  double pa[2];
+  Project(v, pr, pv);
+  Project(c, pr, pc);
+  Project(d, pr, pd);
+  Project(a, pr, pa);
+  const int s = Orient2D(pv, pc, pd);
+  return Orient2D(pv, pc, pa) * s >= 0 && Orient2D(pv, pa, pd) * s >= 0;
+}
+
+/** Edge (v, a) of one face runs into the other face (v, c, d) beyond v. */
+bool
+EdgeEntersFaceAtSharedVertex(const Vec3 & v, const Vec3 & a, const Vec3 & c, const Vec3 & d)
+{
+  return Orient3D(v, c, d, a) == 0 && DirectionInWedge(a, v, c, d);
+}
+} // namespace
+
+int
+Orient2D(const double a[2], const double b[2], const double c[2])
+{
+  const double acx = a[0] - c[0];
+  const double bcx = b[0] - c[0];
+  const double acy = a[1] - c[1];
+  const double bcy = b[1] - c[1];
+  const double left = acx * bcy;
+  const double right = acy * bcx;
+  const double det = left - right;
+  const double bound = Orient2DBound * (std::abs(left) + std::abs(right));
+  if (det > bound || -det > bound)
+  {
+    return SignOf(det);
+  }
+  // det[b-a, c-a] = det[b,c] - det[a,c] - det[b,a] over the 2x2 rows.
+  ExactSum s;
+  s.AddProduct(1.0, b[0], c[1]);
+  s.AddProduct(-1.0, b[1], c[0]);
+  s.AddProduct(-1.0, a[0], c[1]);
+  s.AddProduct(1.0, a[1], c[0]);
+  s.AddProduct(-1.0, b[0], a[1]);
+  s.AddProduct(1.0, b[1], a[0]);
+  return s.Sign();
+}
+
+int
+Orient3D(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
+{
+  const Vec3   u = b - a;
+  const Vec3   v = c - a;
+  const Vec3   w = d - a;
+  const double m0 = u[1] * v[2];
+  const double m1 = u[2] * v[1];
+  const double m2 = u[2] * v[0];
+  const double m3 = u[0] * v[2];
+  const double m4 = u[0] * v[1];
+  const double m5 = u[1] * v[0];
+  const double det = w[0] * (m0 - m1) + w[1] * (m2 - m3) + w[2] * (m4 - m5);
+  const double permanent = std::abs(w[0]) * (std::abs(m0) + std::abs(m1)) +
+                           std::abs(w[1]) * (std::abs(m2) + std::abs(m3)) +
+                           std::abs(w[2]) * (std::abs(m4) + std::abs(m5));
+  const double bound = Orient3DBound * permanent;
+  if (det > bound || -det > bound)
+  {
+    return SignOf(det);
+  }
+  // det[b-a, c-a, d-a] = det[b,c,d] - det[a,c,d] - det[b,a,d] - det[b,c,a].
+  ExactSum s;
+  AddDet3(s, 1.0, b, c, d);
+  AddDet3(s, -1.0, a, c, d);
+  AddDet3(s, -1.0, b, a, d);
+  AddDet3(s, -1.0, b, c, a);
+  return s.Sign();
+}
+
+bool
+IsTriangleDegenerateExact(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  Projection pr{};
+  return !ChooseProjection(a, b, c, pr);
+}
+
+bool
+SegmentIntersectsTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & p, const Vec3 & q, const Vec3 & r)
+{
+  const int oa = Orient3D(p, q, r, a);
+  const int ob = Orient3D(p, q, r, b);
+  if (oa * ob > 0)
+  {
+    return false;
+  }
+  if (oa == 0 && ob == 0)
+  {
+    Projection pr{};
+    if (!ChooseProjection(p, q, r, pr))
+    {
+      return false;
+    }
+    double pa[2];
+    double pb[2];
+    double t[3][2];
+    Project(a, pr, pa);
+    Project(b, pr, pb);
+    Project(p, pr, t[0]);
+    Project(q, pr, t[1]);
+    Project(r, pr, t[2]);
+    return SegmentIntersectsTriangle2D(pa, pb, t);
+  }
+  // The line through a and b crosses the plane at a point of the segment; it
+  // meets the closed triangle iff the three signed volumes do not disagree.
+  const int s1 = Orient3D(a, b, p, q);
+  const int s2 = Orient3D(a, b, q, r);
+  const int s3 = Orient3D(a, b, r, p);
+  const bool anyPositive = s1 > 0 || s2 > 0 || s3 > 0;
+  const bool anyNegative = s1 < 0 || s2 < 0 || s3 < 0;
+  return !(anyPositive && anyNegative);
+}
+
+bool
+TrianglesIntersect(const Vec3 P[3], const Vec3 Q[3])
+{
+  // If two closed triangles meet, an end of their (convex) intersection lies on an
+  // edge of one of them, so six segment tests decide it.
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    if (SegmentIntersectsTriangle(P[i], P[(i + 1) % 3], Q[0], Q[1], Q[2]) ||
+        SegmentIntersectsTriangle(Q[i], Q[(i + 1) % 3], P[0], P[1], P[2]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool
+FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], const IdentifierType qid[3])
+{
+  int sharedP[3] = { -1, -1, -1 }; // index into Q of P's vertex i, or -1
+  int shared = 0;
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      if (pid[i] == qid[j])
+      {
+        sharedP[i] = static_cast<int>(j);
+        ++shared;
+      }
+    }
+  }
+  if (shared == 0)
+  {
+    return TrianglesIntersect(P, Q);
+  }
+  if (shared >= 3)
+  {
+    return true;
+  }
+  if (shared == 2)
+  {
+    // Common edge (v, w); the faces overlap beyond it only if they are coplanar
+    // with their third vertices on the same side of the edge.
+    unsigned int pi = 0;
+    while (sharedP[pi] >= 0)
+    {
+      ++pi;
+    }
+    const Vec3 & v = P[(pi + 1) % 3];
+    const Vec3 & w = P[(pi + 2) % 3];
+    const Vec3 & a = P[pi];
+    unsigned int qi = 0;
+    while (qid[qi] == pid[(pi + 1) % 3] || qid[qi] == pid[(pi + 2) % 3])
+    {
+      ++qi;
+    }
+    const Vec3 & c = Q[qi];
+    if (Orient3D(v, w, a, c) != 0)
+    {
+      return false;
+    }
+    Projection pr{};
+    if (!ChooseProjection(v, w, a, pr))
+    {
+      return false;
+    }
+    double pv[2];
+    double pw[2];
+    double pa[2];
+    double pc[2];
+    Project(v, pr, pv);
+    Project(w, pr, pw);
+    Project(a, pr, pa);
+    Project(c, pr, pc);
+    return Orient2D(pv, pw, pa) * Orient2D(pv, pw, pc) > 0;
+  }
+  // One common vertex v: P = (v, a, b), Q = (v, c, d). A point other than v in
+  // both faces exists iff the far edge of one face meets the other face, or an
+  // edge leaving v runs into the other face: walking from v through a common
+  // point, the last common point lies on the boundary of one face away from v,
+  // i.e. on its far edge or on one of its edges leaving v.
+  unsigned int pi = 0;
+  while (sharedP[pi] < 0)
+  {
+    ++pi;
+  }
+  const unsigned int qi = static_cast<unsigned int>(sharedP[pi]);
+  const Vec3 &       v = P[pi];
+  const Vec3 &       a = P[(pi + 1) % 3];
+  const Vec3 &       b = P[(pi + 2) % 3];
+  const Vec3 &       c = Q[(qi + 1) % 3];
+  const Vec3 &       d = Q[(qi + 2) % 3];
+  return SegmentIntersectsTriangle(a, b, v, c, d) || SegmentIntersectsTriangle(c, d, v, a, b) ||
+         EdgeEntersFaceAtSharedVertex(v, a, c, d) || EdgeEntersFaceAtSharedVertex(v, b, c, d) ||
+         EdgeEntersFaceAtSharedVertex(v, c, a, b) || EdgeEntersFaceAtSharedVertex(v, d, a, b);
+}
+
+} // namespace MeshExtraction
+} // namespace itk

@@ -1,0 +1,564 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#include "itkMeshExtractionQualityAnalysis.h"
+#include "itkMeshExtractionParallel.h"
+#include "itkMeshExtractionPredicates.h"
+#include "itkMeshExtractionTriangleAABBTree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <numeric>
+#include <ostream>
+#include <sstream>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+namespace
+{
+constexpr double RadiansToDegrees = 180.0 / itk::Math::pi;
+
+/** Linearly interpolated percentile; partially reorders `values` (nth_element). */
+double
+Percentile(std::vector<double> & values, double fraction)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  const double position = fraction * static_cast<double>(values.size() - 1);
+  const auto   lower = static_cast<std::size_t>(std::floor(position));
+  std::nth_element(values.begin(), values.begin() + lower, values.end());
+  const double low = values[lower];
+  if (lower + 1 >= values.size())
+  {
+    return low;
+  }
+  const double high = *std::min_element(values.begin() + lower + 1, values.end());
+  const double w = position - static_cast<double>(lower);
+  return (1.0 - w) * low + w * high;
+}
+
+void
+PrintStatistics(std::ostream & os, const char * name, const ValueStatistics & s)
+{
+  os << "  " << std::left << std::setw(16) << name << std::right << std::fixed << std::setprecision(4) << std::setw(10)
+     << s.mean << std::setw(10) << s.minimum << std::setw(10) << s.percentile05 << std::setw(10) << s.median
+     << std::setw(10) << s.maximum << '\n';
+}
+
+void
+PrintStatisticsJSON(std::ostream & os, const ValueStatistics & s)
+{
+  os << "{\"count\": " << s.count << ", \"mean\": " << s.mean << ", \"min\": " << s.minimum << ", \"max\": " << s.maximum
+     << ", \"p01\": " << s.percentile01 << ", \"p05\": " << s.percentile05 << ", \"median\": " << s.median
+     << ", \"p95\": " << s.percentile95 << ", \"histogram_range\": [" << s.histogramLower << ", " << s.histogramUpper
+     << "], \"histogram\": [";
+  for (std::size_t i = 0; i < s.histogram.size(); ++i)
+  {
+    os << (i ? ", " : "") << s.histogram[i];
+  }
+  os << "]}";
+}
+
+Vec3
+AnyPerpendicular(const Vec3 & n)
+{
+  const Vec3 axis = std::abs(n[0]) < 0.6 ? MakeVec3(1, 0, 0) : MakeVec3(0, 1, 0);
+  Vec3       u = Cross(n, axis);
+  return u * (1.0 / Norm(u));
+}
+} // namespace
+
+ValueStatistics
+ComputeValueStatistics(std::vector<double> values, double lower, double upper, unsigned int bins)
+{
+  ValueStatistics s;
+  s.histogramLower = lower;
+  s.histogramUpper = upper;
+  s.histogram.assign(bins, 0);
+  s.count = values.size();
+  if (values.empty())
+  {
+    return s;
+  }
+  const double width = (upper - lower) / bins;
+  double       sum = 0.0;
+  for (double v : values)
+  {
+    sum += v;
+    long bin = width > 0.0 ? static_cast<long>(std::floor((v - lower) / width)) : 0;
+    bin = std::clamp<long>(bin, 0, static_cast<long>(bins) - 1);
+    ++s.histogram[static_cast<std::size_t>(bin)];
+  }
+  s.mean = sum / static_cast<double>(values.size());
+  const auto range = std::minmax_element(values.begin(), values.end());
+  s.minimum = *range.first;
+  s.maximum = *range.second;
+  s.percentile01 = Percentile(values, 0.01);
+  s.percentile05 = Percentile(values, 0.05);
+  s.median = Percentile(values, 0.5);
+  s.percentile95 = Percentile(values, 0.95);
+  return s;
+}
+
+std::vector<int>
+ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance)
+{
+  const std::size_t          n = mesh.triangles.size();
+  std::vector<int>           result(n, 0);
+  std::vector<std::uint32_t> valid;
+  valid.reserve(n);
+  for (std::uint32_t f = 0; f < n; ++f)
+  {
+    const auto & t = mesh.triangles[f];
+    if (MeasureTriangle(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]).qArea > degenerateQAreaTolerance)
+    {
+      valid.push_back(f);
+    }
+  }
+  TriangleAABBTree tree;
+  tree.Build(mesh, &valid);
+  ParallelForBlocks(valid.size(), 1024, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const std::uint32_t f = valid[i];
+      const auto &        t = mesh.triangles[f];
+      const Vec3 &        a = mesh.points[t[0]];
+      const Vec3 &        b = mesh.points[t[1]];
+      const Vec3 &        c = mesh.points[t[2]];
+      const Vec3          origin = TriangleCentroid(a, b, c);
+      const Vec3          normal = TriangleUnitNormal(a, b, c);
+      const Vec3          u = AnyPerpendicular(normal);
+      const Vec3          w = Cross(normal, u);
+      // Any direction into the open half-space of the normal tells the side the
+      // normal points to; retry with tilted rays when one grazes an edge.
+      for (unsigned int attempt = 0; attempt < 12; ++attempt)
+      {
+        Vec3 direction = normal;
+        if (attempt > 0)
+        {
+          const double angle = 2.399963229728653 * attempt; // golden angle
+          direction = normal + (u * std::cos(angle) + w * std::sin(angle)) * (0.15 + 0.05 * attempt);
+          direction *= 1.0 / Norm(direction);
+        }
+        std::size_t crossings = 0;
+        bool        ambiguous = false;
+        tree.VisitRay(origin, direction, [&](std::uint32_t g) {
+          if (g == f || ambiguous)
+          {
+            return;
+          }
+          const auto &         s = mesh.triangles[g];
+          const RayTriangleHit hit =
+            IntersectRayTriangle(origin, direction, mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]], 0.0);
+          ambiguous = hit.ambiguous;
+          crossings += hit.hit ? 1 : 0;
+        });
+        if (!ambiguous)
+        {
+          result[f] = (crossings % 2 == 0) ? 1 : -1;
+          break;
+        }
+      }
+    }
+  });
+  return result;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>>
+FindSelfIntersections(const IndexedTriangleMesh & mesh)
+{
+  const std::size_t          n = mesh.triangles.size();
+  std::vector<std::uint32_t> valid;
+  valid.reserve(n);
+  for (std::uint32_t f = 0; f < n; ++f)
+  {
+    const auto & t = mesh.triangles[f];
+    if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
+        !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]))
+    {
+      valid.push_back(f);
+    }
+  }
+  TriangleAABBTree tree;
+  tree.Build(mesh, &valid);
+  constexpr std::size_t                                             BlockSize = 2048;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((valid.size() + BlockSize - 1) / BlockSize);
+  ParallelForBlocks(valid.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const std::uint32_t f = valid[i];
+      const auto &        t = mesh.triangles[f];
+      const Vec3          P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+      const IdentifierType pid[3] = { t[0], t[1], t[2] };
+      tree.VisitOverlapping(TriangleBox(mesh, f), [&](std::uint32_t g) {
+        if (g <= f)
+        {
+          return;
+        }
+        const auto &         s = mesh.triangles[g];
+        const Vec3           Q[3] = { mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]] };
+        const IdentifierType qid[3] = { s[0], s[1], s[2] };
+        if (FacesIntersect(P, pid, Q, qid))
+        {
+          found[block].emplace_back(f, g);
+        }
+      });
+    }
+  });
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (auto & blockPairs : found)
+  {
+    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+TriangleMeshQualityReport
+AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
+                    const TriangleMeshQualityOptions & options,
+                    const IndexedTriangleMesh *        reference,
+                    std::vector<TriangleMeasures> *    measuresOut,
+                    std::vector<double> *              vertexSmoothness)
+{
+  TriangleMeshQualityReport r;
+  const std::size_t         numberOfTriangles = mesh.triangles.size();
+  r.numberOfPoints = mesh.points.size();
+  r.numberOfTriangles = numberOfTriangles;
+  r.numberOfSplitQuads = mesh.numberOfSplitQuads;
+
+  if (reference != nullptr)
+  {
+    if (reference->points.size() != mesh.points.size() || reference->triangles != mesh.triangles)
+    {
+      itkGenericExceptionMacro("TriangleMeshQualityCalculator: the reference mesh must have the same connectivity as "
+                               "the mesh (it has "
+                               << reference->points.size() << " points and " << reference->triangles.size()
+                               << " triangles, the mesh " << mesh.points.size() << " and " << numberOfTriangles
+                               << ", or the triangles differ).");
+    }
+  }
+
+  // Per-triangle measures.
+  std::vector<TriangleMeasures> localMeasures;
+  std::vector<TriangleMeasures> & m = measuresOut ? *measuresOut : localMeasures;
+  m.resize(numberOfTriangles);
+  ParallelForBlocks(numberOfTriangles, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      const auto & t = mesh.triangles[f];
+      m[f] = MeasureTriangle(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+    }
+  });
+
+  const MeshTopology topo = BuildMeshTopology(mesh);
+  r.numberOfEdges = topo.edges.size();
+  r.numberOfReferencedPoints = topo.numberOfReferencedVertices;
+  r.unreferencedPoints = static_cast<std::int64_t>(mesh.points.size() - topo.numberOfReferencedVertices);
+
+  {
+    std::vector<double> qLength(numberOfTriangles);
+    std::vector<double> qAngle(numberOfTriangles);
+    std::vector<double> qArea(numberOfTriangles);
+    std::vector<double> minAngle(numberOfTriangles);
+    std::vector<double> maxAngle(numberOfTriangles);
+    std::size_t         below03 = 0;
+    for (std::size_t f = 0; f < numberOfTriangles; ++f)
+    {
+      qLength[f] = m[f].qLength;
+      qAngle[f] = m[f].qAngle;
+      qArea[f] = m[f].qArea;
+      minAngle[f] = m[f].minAngle * RadiansToDegrees;
+      maxAngle[f] = m[f].maxAngle * RadiansToDegrees;
+      below03 += m[f].qAngle < 0.3 ? 1 : 0;
+      r.degenerateTriangles += m[f].qArea <= options.degenerateQAreaTolerance ? 1 : 0;
+      r.totalArea += m[f].area;
+    }
+    r.fractionQAngleBelow03 = numberOfTriangles ? static_cast<double>(below03) / numberOfTriangles : 0.0;
+    r.qLength = ComputeValueStatistics(std::move(qLength));
+    r.qAngle = ComputeValueStatistics(std::move(qAngle));
+    r.qArea = ComputeValueStatistics(std::move(qArea));
+    r.minimumAngle = ComputeValueStatistics(std::move(minAngle), 0.0, 60.0, 12);
+    r.maximumAngle = ComputeValueStatistics(std::move(maxAngle), 60.0, 180.0, 12);
+  }
+  {
+    std::vector<double> lengths(topo.edges.size());
+    double              longest = 0.0;
+    for (std::size_t e = 0; e < topo.edges.size(); ++e)
+    {
+      lengths[e] = Norm(mesh.points[topo.edges[e].a] - mesh.points[topo.edges[e].b]);
+      longest = std::max(longest, lengths[e]);
+    }
+    r.edgeLength = ComputeValueStatistics(std::move(lengths), 0.0, longest > 0.0 ? longest : 1.0, 10);
+  }
+
+  // Vertices: smoothness |2 pi - sum of incident angles| and valence.
+  {
+    std::vector<double> angleSum(mesh.points.size(), 0.0);
+    for (std::size_t f = 0; f < numberOfTriangles; ++f)
+    {
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        angleSum[mesh.triangles[f][k]] += m[f].angle[k];
+      }
+    }
+    if (vertexSmoothness)
+    {
+      vertexSmoothness->assign(mesh.points.size(), 0.0);
+    }
+    double sum = 0.0;
+    for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    {
+      if (topo.vertexIsInterior[v])
+      {
+        const double s = std::abs(2.0 * itk::Math::pi - angleSum[v]);
+        sum += s;
+        ++r.numberOfInteriorVertices;
+        if (vertexSmoothness)
+        {
+          (*vertexSmoothness)[v] = s;
+        }
+      }
+    }
+    r.meanSmoothness = r.numberOfInteriorVertices ? sum / r.numberOfInteriorVertices : 0.0;
+    std::size_t valence6 = 0;
+    for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    {
+      const std::size_t d = topo.vertexEdgeOffsets[v + 1] - topo.vertexEdgeOffsets[v];
+      if (d == 0 && topo.vertexTriangleOffsets[v + 1] == topo.vertexTriangleOffsets[v])
+      {
+        continue;
+      }
+      if (r.valenceHistogram.size() <= d)
+      {
+        r.valenceHistogram.resize(d + 1, 0);
+      }
+      ++r.valenceHistogram[d];
+      valence6 += d == 6 ? 1 : 0;
+    }
+    r.fractionValence6 =
+      topo.numberOfReferencedVertices ? static_cast<double>(valence6) / topo.numberOfReferencedVertices : 0.0;
+  }
+
+  // Topology.
+  r.nonManifoldEdges = static_cast<std::int64_t>(topo.numberOfNonManifoldEdges);
+  r.nonManifoldVertices = static_cast<std::int64_t>(topo.numberOfNonManifoldVertices);
+  r.boundaryEdges = static_cast<std::int64_t>(topo.numberOfBoundaryEdges);
+  r.boundaryLoops = static_cast<std::int64_t>(topo.numberOfBoundaryLoops);
+  r.inconsistentlyOrientedEdges = static_cast<std::int64_t>(topo.numberOfInconsistentEdges);
+  r.connectedComponents = static_cast<std::int64_t>(topo.numberOfComponents);
+  r.eulerCharacteristic = static_cast<std::int64_t>(topo.numberOfReferencedVertices) -
+                          static_cast<std::int64_t>(topo.edges.size()) + static_cast<std::int64_t>(numberOfTriangles);
+  if (r.IsManifold() && r.IsConsistentlyOriented() && numberOfTriangles > 0)
+  {
+    std::vector<std::int64_t> chi(topo.numberOfComponents, 0);
+    for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    {
+      if (topo.vertexTriangleOffsets[v + 1] > topo.vertexTriangleOffsets[v])
+      {
+        ++chi[topo.triangleComponent[topo.vertexTriangles[topo.vertexTriangleOffsets[v]]]];
+      }
+    }
+    for (const auto & e : topo.edges)
+    {
+      --chi[topo.triangleComponent[topo.incidences[e.firstIncidence].triangle]];
+    }
+    for (std::size_t f = 0; f < numberOfTriangles; ++f)
+    {
+      ++chi[topo.triangleComponent[f]];
+    }
+    r.genus = 0;
+    for (std::size_t c = 0; c < topo.numberOfComponents; ++c)
+    {
+      r.genus += (2 - chi[c] - static_cast<std::int64_t>(topo.componentBoundaryLoops[c])) / 2;
+    }
+  }
+
+  // Volume (divergence theorem).
+  for (const auto & t : mesh.triangles)
+  {
+    r.enclosedVolume += Dot(mesh.points[t[0]], Cross(mesh.points[t[1]], mesh.points[t[2]])) / 6.0;
+  }
+
+  // Inversions.
+  if (reference != nullptr)
+  {
+    r.invertedTrianglesVersusReference = 0;
+    for (std::size_t f = 0; f < numberOfTriangles; ++f)
+    {
+      const auto & t = mesh.triangles[f];
+      if (m[f].qArea <= options.degenerateQAreaTolerance)
+      {
+        continue;
+      }
+      const Vec3 n = TriangleNormal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      const Vec3 nr = TriangleNormal(reference->points[t[0]], reference->points[t[1]], reference->points[t[2]]);
+      r.invertedTrianglesVersusReference += Dot(n, nr) <= 0.0 ? 1 : 0;
+    }
+  }
+  if (options.computeOutwardOrientation && r.IsClosed())
+  {
+    const std::vector<int> side = ClassifyTriangleOrientation(mesh, options.degenerateQAreaTolerance);
+    r.invertedTrianglesVersusOutward = 0;
+    r.undeterminedOrientationTriangles = 0;
+    for (std::size_t f = 0; f < numberOfTriangles; ++f)
+    {
+      if (m[f].qArea <= options.degenerateQAreaTolerance)
+      {
+        continue;
+      }
+      r.invertedTrianglesVersusOutward += side[f] < 0 ? 1 : 0;
+      r.undeterminedOrientationTriangles += side[f] == 0 ? 1 : 0;
+    }
+  }
+  if (options.computeSelfIntersections)
+  {
+    const auto        pairs = FindSelfIntersections(mesh);
+    std::vector<bool> involved(numberOfTriangles, false);
+    for (const auto & p : pairs)
+    {
+      involved[p.first] = true;
+      involved[p.second] = true;
+    }
+    r.selfIntersectingPairs = static_cast<std::int64_t>(pairs.size());
+    r.selfIntersectingTriangles = std::count(involved.begin(), involved.end(), true);
+    r.intersectingPairs.assign(pairs.begin(),
+                               pairs.begin() + std::min(pairs.size(), options.maximumReportedIntersections));
+  }
+  return r;
+}
+
+bool
+TriangleMeshQualityReport::IsValidClosedSurface() const
+{
+  return IsClosed() && IsManifold() && IsConsistentlyOriented() && degenerateTriangles == 0 &&
+         invertedTrianglesVersusOutward <= 0 && invertedTrianglesVersusReference <= 0 && selfIntersectingPairs <= 0 &&
+         enclosedVolume > 0.0;
+}
+
+void
+TriangleMeshQualityReport::Print(std::ostream & os, const std::string & title) const
+{
+  const auto flags = os.flags();
+  const auto precision = os.precision();
+  if (!title.empty())
+  {
+    os << title << '\n';
+  }
+  os << "  points " << numberOfPoints << " (" << numberOfReferencedPoints << " in triangles), triangles "
+     << numberOfTriangles;
+  if (numberOfSplitQuads)
+  {
+    os << " (" << numberOfSplitQuads << " quads split)";
+  }
+  os << ", edges " << numberOfEdges << '\n';
+  os << "  " << std::left << std::setw(16) << "measure" << std::right << std::setw(10) << "mean" << std::setw(10)
+     << "min" << std::setw(10) << "p05" << std::setw(10) << "median" << std::setw(10) << "max" << '\n';
+  PrintStatistics(os, "q_area", qArea);
+  PrintStatistics(os, "q_angle", qAngle);
+  PrintStatistics(os, "q_length", qLength);
+  PrintStatistics(os, "min angle (deg)", minimumAngle);
+  PrintStatistics(os, "max angle (deg)", maximumAngle);
+  PrintStatistics(os, "edge length", edgeLength);
+  os << std::setprecision(4) << "  q_angle < 0.3: " << 100.0 * fractionQAngleBelow03 << " %   smoothness |2pi-sum|: "
+     << std::setprecision(6) << meanSmoothness << "   valence 6: " << std::setprecision(2) << 100.0 * fractionValence6
+     << " %\n";
+  os << "  valence histogram:";
+  for (std::size_t d = 0; d < valenceHistogram.size(); ++d)
+  {
+    if (valenceHistogram[d])
+    {
+      os << ' ' << d << ':' << valenceHistogram[d];
+    }
+  }
+  os << '\n';
+  auto count = [](std::int64_t v) {
+    std::ostringstream s;
+    if (v < 0)
+    {
+      s << "n/a";
+    }
+    else
+    {
+      s << v;
+    }
+    return s.str();
+  };
+  os << "  integrity: degenerate " << degenerateTriangles << ", inverted (outward) "
+     << count(invertedTrianglesVersusOutward) << ", inverted (reference) " << count(invertedTrianglesVersusReference)
+     << ", self-intersecting pairs " << count(selfIntersectingPairs) << '\n';
+  os << "             non-manifold edges " << nonManifoldEdges << ", non-manifold vertices " << nonManifoldVertices
+     << ", boundary edges " << boundaryEdges << " in " << boundaryLoops << " loops, inconsistent edges "
+     << inconsistentlyOrientedEdges << '\n';
+  os << "  topology: components " << connectedComponents << ", Euler characteristic " << eulerCharacteristic
+     << ", genus " << count(genus) << ", unreferenced points " << unreferencedPoints << '\n';
+  os << std::setprecision(6) << "  area " << totalArea << ", enclosed volume " << enclosedVolume << '\n';
+  os << "  valid closed surface: " << (IsValidClosedSurface() ? "yes" : "NO") << '\n';
+  os.flags(flags);
+  os.precision(precision);
+}
+
+void
+TriangleMeshQualityReport::PrintJSON(std::ostream & os) const
+{
+  const auto precision = os.precision();
+  os << std::setprecision(10);
+  os << "{\"points\": " << numberOfPoints << ", \"referenced_points\": " << numberOfReferencedPoints
+     << ", \"triangles\": " << numberOfTriangles << ", \"split_quads\": " << numberOfSplitQuads
+     << ", \"edges\": " << numberOfEdges;
+  os << ", \"q_area\": ";
+  PrintStatisticsJSON(os, qArea);
+  os << ", \"q_angle\": ";
+  PrintStatisticsJSON(os, qAngle);
+  os << ", \"q_length\": ";
+  PrintStatisticsJSON(os, qLength);
+  os << ", \"min_angle_deg\": ";
+  PrintStatisticsJSON(os, minimumAngle);
+  os << ", \"max_angle_deg\": ";
+  PrintStatisticsJSON(os, maximumAngle);
+  os << ", \"edge_length\": ";
+  PrintStatisticsJSON(os, edgeLength);
+  os << ", \"fraction_q_angle_below_0_3\": " << fractionQAngleBelow03 << ", \"mean_smoothness\": " << meanSmoothness
+     << ", \"interior_vertices\": " << numberOfInteriorVertices << ", \"fraction_valence_6\": " << fractionValence6
+     << ", \"valence_histogram\": [";
+  for (std::size_t d = 0; d < valenceHistogram.size(); ++d)
+  {
+    os << (d ? ", " : "") << valenceHistogram[d];
+  }
+  os << "], \"degenerate_triangles\": " << degenerateTriangles
+     << ", \"inverted_triangles_vs_reference\": " << invertedTrianglesVersusReference
+     << ", \"inverted_triangles_vs_outward\": " << invertedTrianglesVersusOutward
+     << ", \"undetermined_orientation_triangles\": " << undeterminedOrientationTriangles
+     << ", \"non_manifold_edges\": " << nonManifoldEdges << ", \"non_manifold_vertices\": " << nonManifoldVertices
+     << ", \"boundary_edges\": " << boundaryEdges << ", \"boundary_loops\": " << boundaryLoops
+     << ", \"inconsistently_oriented_edges\": " << inconsistentlyOrientedEdges
+     << ", \"unreferenced_points\": " << unreferencedPoints << ", \"connected_components\": " << connectedComponents
+     << ", \"euler_characteristic\": " << eulerCharacteristic << ", \"genus\": " << genus
+     << ", \"self_intersecting_pairs\": " << selfIntersectingPairs
+     << ", \"self_intersecting_triangles\": " << selfIntersectingTriangles << ", \"total_area\": " << totalArea
+     << ", \"enclosed_volume\": " << enclosedVolume
+     << ", \"valid_closed_surface\": " << (IsValidClosedSurface() ? "true" : "false") << "}";
+  os.precision(precision);
+}
+
+} // namespace MeshExtraction
+} // namespace itk

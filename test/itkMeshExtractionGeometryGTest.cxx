@@ -1,0 +1,266 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#include "itkMeshExtractionPredicates.h"
+#include "itkMeshExtractionTriangleAABBTree.h"
+#include "itkMeshExtractionTestHelpers.h"
+
+#include "gtest/gtest.h"
+
+#include <random>
+
+using namespace itk::MeshExtraction;
+using MeshExtractionTest::MakeIcosphere;
+
+namespace
+{
+const double Sqrt3 = std::sqrt(3.0);
+
+TriangleMeasures
+Measure(double ax, double ay, double bx, double by, double cx, double cy)
+{
+  return MeasureTriangle(MakeVec3(ax, ay, 0), MakeVec3(bx, by, 0), MakeVec3(cx, cy, 0));
+}
+} // namespace
+
+TEST(TriangleMeasures, EquilateralTriangleHasQualityOne)
+{
+  const TriangleMeasures m = Measure(0, 0, 1, 0, 0.5, Sqrt3 / 2);
+  EXPECT_NEAR(m.qLength, 1.0, 1e-12);
+  EXPECT_NEAR(m.qAngle, 1.0, 1e-12);
+  EXPECT_NEAR(m.qArea, 1.0, 1e-12);
+  EXPECT_NEAR(m.minAngle, itk::Math::pi / 3, 1e-12);
+  EXPECT_NEAR(m.maxAngle, itk::Math::pi / 3, 1e-12);
+  EXPECT_NEAR(m.area, Sqrt3 / 4, 1e-12);
+}
+
+TEST(TriangleMeasures, RightIsoscelesTriangleHasQAngleOneHalf)
+{
+  const TriangleMeasures m = Measure(0, 0, 1, 0, 0, 1);
+  EXPECT_NEAR(m.qAngle, 0.5, 1e-12);                       // 45 / 90 degrees
+  EXPECT_NEAR(m.qLength, 1.0 / std::sqrt(2.0), 1e-12);     // 1 / sqrt(2)
+  EXPECT_NEAR(m.qArea, 4.0 * Sqrt3 * 0.5 / 4.0, 1e-12);    // 4 sqrt3 A / (1 + 1 + 2)
+  EXPECT_NEAR(m.maxAngle, itk::Math::pi / 2, 1e-12);
+}
+
+TEST(TriangleMeasures, DegenerateTrianglesHaveQualityZero)
+{
+  const TriangleMeasures collinear = Measure(0, 0, 1, 0, 2, 0);
+  EXPECT_EQ(collinear.qAngle, 0.0);
+  EXPECT_EQ(collinear.qArea, 0.0);
+  EXPECT_NEAR(collinear.maxAngle, itk::Math::pi, 1e-12);
+  const TriangleMeasures coincident = Measure(0, 0, 0, 0, 1, 0);
+  EXPECT_EQ(coincident.qAngle, 0.0);
+  EXPECT_EQ(coincident.qArea, 0.0);
+  EXPECT_EQ(coincident.qLength, 0.0);
+}
+
+TEST(TriangleMeasures, Figure42QAngleAndQAreaFallMonotonicallyButQLengthDoesNot)
+{
+  // Thesis Figure 4.2: the apex of an equilateral triangle moves along a line
+  // until the triangle is degenerate (here to (2, 0), beyond the base).
+  double previousAngle = 2.0;
+  double previousArea = 2.0;
+  bool   qLengthRose = false;
+  double previousLength = 2.0;
+  for (int i = 0; i <= 100; ++i)
+  {
+    const double           s = i / 100.0;
+    const TriangleMeasures m = Measure(0, 0, 1, 0, 0.5 + 1.5 * s, (Sqrt3 / 2) * (1 - s));
+    EXPECT_LT(m.qAngle, previousAngle) << "s = " << s;
+    EXPECT_LT(m.qArea, previousArea) << "s = " << s;
+    qLengthRose = qLengthRose || m.qLength > previousLength + 1e-12;
+    previousAngle = m.qAngle;
+    previousArea = m.qArea;
+    previousLength = m.qLength;
+  }
+  EXPECT_NEAR(previousAngle, 0.0, 1e-12);
+  EXPECT_NEAR(previousArea, 0.0, 1e-12);
+  EXPECT_TRUE(qLengthRose) << "q_length should rise again as the triangle degenerates";
+  EXPECT_NEAR(previousLength, 0.5, 1e-12);
+}
+
+TEST(TriangleGeometry, ClosestPointOnTriangleMatchesBruteForce)
+{
+  std::mt19937                           rng(7);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const Vec3 a = MakeVec3(u(rng), u(rng), u(rng));
+    const Vec3 b = MakeVec3(u(rng), u(rng), u(rng));
+    const Vec3 c = MakeVec3(u(rng), u(rng), u(rng));
+    const Vec3 p = MakeVec3(u(rng), u(rng), u(rng)) * 2.0;
+    const double exact = SquaredDistancePointTriangle(p, a, b, c);
+    double       best = std::numeric_limits<double>::max();
+    const int    n = 300;
+    for (int i = 0; i <= n; ++i)
+    {
+      for (int j = 0; i + j <= n; ++j)
+      {
+        const Vec3 q = a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n);
+        best = std::min(best, SquaredNorm(p - q));
+      }
+    }
+    EXPECT_LE(exact, best + 1e-12);
+    EXPECT_NEAR(std::sqrt(exact), std::sqrt(best), 0.03);
+  }
+}
+
+TEST(TriangleGeometry, ClosestPointOfDegenerateTriangleIsOnItsSegment)
+{
+  const Vec3 a = MakeVec3(0, 0, 0);
+  const Vec3 b = MakeVec3(1, 0, 0);
+  const Vec3 c = MakeVec3(2, 0, 0);
+  EXPECT_NEAR(SquaredDistancePointTriangle(MakeVec3(1.5, 1, 0), a, b, c), 1.0, 1e-15);
+  EXPECT_NEAR(SquaredDistancePointTriangle(MakeVec3(3, 0, 0), a, a, a), 9.0, 1e-15);
+}
+
+// Orientation tests are checked against exact integer arithmetic: coordinates
+// are integers below 2^25 scaled by 2^-20, so the determinant fits in __int128.
+namespace
+{
+__int128
+ExactOrient3D(const long long a[3], const long long b[3], const long long c[3], const long long d[3])
+{
+  const __int128 u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const __int128 v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const __int128 w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+Vec3
+Scaled(const long long p[3])
+{
+  const double s = std::ldexp(1.0, -20);
+  return MakeVec3(p[0] * s, p[1] * s, p[2] * s);
+}
+} // namespace
+
+TEST(ExactPredicates, Orient3DSignIsExactOnNearlyCoplanarPoints)
+{
+  std::mt19937_64                          rng(11);
+  std::uniform_int_distribution<long long> big(-(1LL << 24), 1LL << 24);
+  std::uniform_int_distribution<long long> small(-3, 3);
+  std::uniform_int_distribution<long long> tiny(-1, 1);
+  int                                      naiveWrong = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    long long a[3];
+    long long u[3];
+    long long v[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      a[k] = big(rng);
+      u[k] = big(rng) / 4;
+      v[k] = big(rng) / 4;
+    }
+    long long b[3];
+    long long c[3];
+    long long d[3];
+    const long long s = small(rng);
+    const long long t = small(rng);
+    for (int k = 0; k < 3; ++k)
+    {
+      b[k] = a[k] + u[k];
+      c[k] = a[k] + v[k];
+      d[k] = a[k] + s * u[k] + t * v[k] + tiny(rng); // on the plane, or one unit off it
+    }
+    const __int128 exact = ExactOrient3D(a, b, c, d);
+    const int      expected = (exact > 0) - (exact < 0);
+    ASSERT_EQ(Orient3D(Scaled(a), Scaled(b), Scaled(c), Scaled(d)), expected) << "trial " << trial;
+    const Vec3   A = Scaled(a);
+    const double naive = Dot(Cross(Scaled(b) - A, Scaled(c) - A), Scaled(d) - A);
+    naiveWrong += ((naive > 0) - (naive < 0)) != expected ? 1 : 0;
+  }
+  // The configurations are hard enough that plain double evaluation fails often.
+  EXPECT_GT(naiveWrong, 100);
+}
+
+TEST(ExactPredicates, Orient2DDetectsCollinearityExactly)
+{
+  // Points on the line y = x / 3 at scales where rounding of differences matters.
+  for (int i = 1; i < 1000; ++i)
+  {
+    const double a[2] = { 0.0, 0.0 };
+    const double b[2] = { 3.0 * i, 1.0 * i };
+    const double c[2] = { 3.0 * (i + 7) * 1e7, 1.0 * (i + 7) * 1e7 };
+    EXPECT_EQ(Orient2D(a, b, c), 0);
+    const double d[2] = { c[0], std::nextafter(c[1], 1e300) };
+    EXPECT_EQ(Orient2D(a, b, d), 1);
+  }
+}
+
+TEST(ExactPredicates, TriangleIntersectionCases)
+{
+  const Vec3 P[3] = { MakeVec3(0, 0, 0), MakeVec3(2, 0, 0), MakeVec3(0, 2, 0) };
+  const Vec3 crossing[3] = { MakeVec3(0.5, 0.5, -1), MakeVec3(0.5, 0.5, 1), MakeVec3(3, 3, 0.2) };
+  EXPECT_TRUE(TrianglesIntersect(P, crossing));
+  const Vec3 above[3] = { MakeVec3(0, 0, 0.1), MakeVec3(2, 0, 0.1), MakeVec3(0, 2, 0.1) };
+  EXPECT_FALSE(TrianglesIntersect(P, above));
+  const Vec3 touchingVertex[3] = { MakeVec3(2, 0, 0), MakeVec3(3, 0, 1), MakeVec3(3, 1, -1) };
+  EXPECT_TRUE(TrianglesIntersect(P, touchingVertex));
+  const Vec3 coplanarInside[3] = { MakeVec3(0.2, 0.2, 0), MakeVec3(0.5, 0.2, 0), MakeVec3(0.2, 0.5, 0) };
+  EXPECT_TRUE(TrianglesIntersect(P, coplanarInside));
+  const Vec3 coplanarApart[3] = { MakeVec3(2, 2, 0), MakeVec3(3, 2, 0), MakeVec3(2, 3, 0) };
+  EXPECT_FALSE(TrianglesIntersect(P, coplanarApart));
+}
+
+TEST(ExactPredicates, MeshNeighboursOnlyIntersectAwayFromSharedElements)
+{
+  const itk::IdentifierType pid[3] = { 0, 1, 2 };
+  const Vec3                P[3] = { MakeVec3(0, 0, 0), MakeVec3(2, 0, 0), MakeVec3(0, 2, 0) };
+  // Shared edge (0, 1), bent: only the edge is common.
+  const itk::IdentifierType e[3] = { 1, 0, 3 };
+  const Vec3                bent[3] = { MakeVec3(2, 0, 0), MakeVec3(0, 0, 0), MakeVec3(1, -1, 0.5) };
+  EXPECT_FALSE(FacesIntersect(P, pid, bent, e));
+  // Shared edge, folded flat on top of the first face: overlap.
+  const Vec3 folded[3] = { MakeVec3(2, 0, 0), MakeVec3(0, 0, 0), MakeVec3(0.5, 0.5, 0) };
+  EXPECT_TRUE(FacesIntersect(P, pid, folded, e));
+  // Shared edge, flat but on the other side: a plane, no overlap.
+  const Vec3 flat[3] = { MakeVec3(2, 0, 0), MakeVec3(0, 0, 0), MakeVec3(1, -1, 0) };
+  EXPECT_FALSE(FacesIntersect(P, pid, flat, e));
+  // Shared vertex 0 only, the faces otherwise apart.
+  const itk::IdentifierType v[3] = { 0, 4, 5 };
+  const Vec3                apart[3] = { MakeVec3(0, 0, 0), MakeVec3(-1, 0, 1), MakeVec3(0, -1, 1) };
+  EXPECT_FALSE(FacesIntersect(P, pid, apart, v));
+  // Shared vertex, the far edge of the second face pierces the first.
+  const Vec3 pierce[3] = { MakeVec3(0, 0, 0), MakeVec3(1, 0.5, -1), MakeVec3(0.5, 1, 1) };
+  EXPECT_TRUE(FacesIntersect(P, pid, pierce, v));
+  // Shared vertex, an edge leaving it runs inside the first face (coplanar wedge).
+  const Vec3 wedge[3] = { MakeVec3(0, 0, 0), MakeVec3(0.5, 0.5, 0), MakeVec3(0.5, 0.5, 1) };
+  EXPECT_TRUE(FacesIntersect(P, pid, wedge, v));
+  // Same vertex triple: duplicate face.
+  EXPECT_TRUE(FacesIntersect(P, pid, P, pid));
+}
+
+TEST(TriangleAABBTree, NearestTriangleMatchesBruteForce)
+{
+  const IndexedTriangleMesh mesh = MakeIcosphere(3, 5.0);
+  TriangleAABBTree          tree;
+  tree.Build(mesh);
+  std::mt19937                           rng(3);
+  std::uniform_real_distribution<double> u(-8.0, 8.0);
+  for (int trial = 0; trial < 500; ++trial)
+  {
+    const Vec3 p = MakeVec3(u(rng), u(rng), u(rng));
+    double     best = std::numeric_limits<double>::max();
+    for (const auto & t : mesh.triangles)
+    {
+      best = std::min(best, SquaredDistancePointTriangle(p, mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]));
+    }
+    EXPECT_DOUBLE_EQ(tree.FindNearest(p).squaredDistance, best);
+  }
+}

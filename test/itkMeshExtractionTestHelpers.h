@@ -1,0 +1,170 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionTestHelpers_h
+#define itkMeshExtractionTestHelpers_h
+
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMesh.h"
+#include "itkQuadEdgeMesh.h"
+
+#include <cmath>
+#include <map>
+#include <random>
+
+/** Fixtures shared by the GoogleTest suites: small closed and open meshes built
+ * in code, in the module's flat form, and converted to ITK meshes. */
+namespace MeshExtractionTest
+{
+using itk::MeshExtraction::IndexedTriangleMesh;
+using itk::MeshExtraction::MakeVec3;
+using itk::MeshExtraction::Vec3;
+using QEMeshType = itk::QuadEdgeMesh<double, 3>;
+using MeshType = itk::Mesh<double, 3>;
+/** A QuadEdgeMesh with double coordinates, for tests that need 1e-9 precision. */
+using QEMeshTraitsD = itk::QuadEdgeMeshTraits<double, 3, bool, bool, double, double>;
+using QEMeshDType = itk::QuadEdgeMesh<double, 3, QEMeshTraitsD>;
+
+/** Icosahedron subdivided `level` times, vertices projected on the sphere
+ * (center, radius); outward counter-clockwise triangles. */
+inline IndexedTriangleMesh
+MakeIcosphere(unsigned int level, double radius = 1.0, const Vec3 & center = MakeVec3(0, 0, 0))
+{
+  IndexedTriangleMesh m;
+  const double        t = (1.0 + std::sqrt(5.0)) / 2.0;
+  const double        base[12][3] = { { -1, t, 0 }, { 1, t, 0 },   { -1, -t, 0 }, { 1, -t, 0 },
+                                      { 0, -1, t }, { 0, 1, t },   { 0, -1, -t }, { 0, 1, -t },
+                                      { t, 0, -1 }, { t, 0, 1 },   { -t, 0, -1 }, { -t, 0, 1 } };
+  for (const auto & b : base)
+  {
+    Vec3 v = MakeVec3(b[0], b[1], b[2]);
+    m.points.push_back(v * (1.0 / itk::MeshExtraction::Norm(v)));
+  }
+  m.triangles = { { 0, 11, 5 }, { 0, 5, 1 },  { 0, 1, 7 },   { 0, 7, 10 }, { 0, 10, 11 }, { 1, 5, 9 },  { 5, 11, 4 },
+                  { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },   { 3, 9, 4 },  { 3, 4, 2 },   { 3, 2, 6 },  { 3, 6, 8 },
+                  { 3, 8, 9 },  { 4, 9, 5 },  { 2, 4, 11 },  { 6, 2, 10 }, { 8, 6, 7 },   { 9, 8, 1 } };
+  for (unsigned int l = 0; l < level; ++l)
+  {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      const auto found = midpoints.find(key);
+      if (found != midpoints.end())
+      {
+        return found->second;
+      }
+      Vec3 v = (m.points[a] + m.points[b]) * 0.5;
+      v *= 1.0 / itk::MeshExtraction::Norm(v);
+      m.points.push_back(v);
+      const auto index = static_cast<std::uint32_t>(m.points.size() - 1);
+      midpoints[key] = index;
+      return index;
+    };
+    std::vector<itk::MeshExtraction::TriangleIndices> next;
+    for (const auto & tri : m.triangles)
+    {
+      const std::uint32_t ab = midpoint(tri[0], tri[1]);
+      const std::uint32_t bc = midpoint(tri[1], tri[2]);
+      const std::uint32_t ca = midpoint(tri[2], tri[0]);
+      next.push_back({ tri[0], ab, ca });
+      next.push_back({ tri[1], bc, ab });
+      next.push_back({ tri[2], ca, bc });
+      next.push_back({ ab, bc, ca });
+    }
+    m.triangles.swap(next);
+  }
+  for (auto & p : m.points)
+  {
+    p = center + p * radius;
+  }
+  return m;
+}
+
+/** Torus (major radius R about the z axis, minor radius r), nu x nv quads split
+ * into outward triangles. */
+inline IndexedTriangleMesh
+MakeTorus(unsigned int nu, unsigned int nv, double R, double r)
+{
+  IndexedTriangleMesh m;
+  for (unsigned int i = 0; i < nu; ++i)
+  {
+    const double u = 2.0 * itk::Math::pi * i / nu;
+    for (unsigned int j = 0; j < nv; ++j)
+    {
+      const double v = 2.0 * itk::Math::pi * j / nv;
+      m.points.push_back(MakeVec3((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)));
+    }
+  }
+  auto id = [nu, nv](unsigned int i, unsigned int j) { return static_cast<std::uint32_t>((i % nu) * nv + (j % nv)); };
+  for (unsigned int i = 0; i < nu; ++i)
+  {
+    for (unsigned int j = 0; j < nv; ++j)
+    {
+      m.triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      m.triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+    }
+  }
+  return m;
+}
+
+/** Flat n x n grid of unit squares in z = 0, each split into two triangles
+ * (normals +z); an open sheet with one boundary loop. */
+inline IndexedTriangleMesh
+MakeGrid(unsigned int n, double step = 1.0)
+{
+  IndexedTriangleMesh m;
+  for (unsigned int j = 0; j <= n; ++j)
+  {
+    for (unsigned int i = 0; i <= n; ++i)
+    {
+      m.points.push_back(MakeVec3(i * step, j * step, 0.0));
+    }
+  }
+  auto id = [n](unsigned int i, unsigned int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (unsigned int j = 0; j < n; ++j)
+  {
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      m.triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      m.triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+    }
+  }
+  return m;
+}
+
+/** Regular tetrahedron, outward oriented. */
+inline IndexedTriangleMesh
+MakeTetrahedron()
+{
+  IndexedTriangleMesh m;
+  m.points = { MakeVec3(1, 1, 1), MakeVec3(1, -1, -1), MakeVec3(-1, 1, -1), MakeVec3(-1, -1, 1) };
+  m.triangles = { { 0, 1, 2 }, { 0, 3, 1 }, { 0, 2, 3 }, { 1, 3, 2 } };
+  return m;
+}
+
+template <typename TMesh>
+typename TMesh::Pointer
+ToITKMesh(const IndexedTriangleMesh & in)
+{
+  auto mesh = TMesh::New();
+  itk::MeshExtraction::FillMesh(in, *mesh);
+  return mesh;
+}
+
+} // namespace MeshExtractionTest
+
+#endif
