@@ -11,6 +11,7 @@ itk_module(MeshExtraction
     ITKQuadEdgeMesh
     ITKQuadEdgeMeshFiltering
     ITKImageFunction
+    ITKImageIntensity
     ITKImageSources
     ITKImageNoise
   TEST_DEPENDS

@@ -48,6 +48,11 @@ Orient2D(const double a[2], const double b[2], const double c[2]);
 MeshExtraction_EXPORT int
 Orient3D(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d);
 
+/** The sign of Orient3D computed always with the full exact expansion (no
+ * floating-point filter, no shortcut): for testing the exact path. */
+MeshExtraction_EXPORT int
+Orient3DExact(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d);
+
 /** True if a, b and c are collinear (or coincide), decided exactly. */
 MeshExtraction_EXPORT bool
 IsTriangleDegenerateExact(const Vec3 & a, const Vec3 & b, const Vec3 & c);

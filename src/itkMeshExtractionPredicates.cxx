@@ -53,8 +53,6 @@ TwoProduct(double a, double b, double & x, double & y)
 class ExactSum
 {
 public:
-  ExactSum() { m_Components.reserve(128); }
-
   void
   Add(double b)
   {
@@ -62,23 +60,23 @@ public:
     {
       return;
     }
-    double       q = b;
-    std::size_t  out = 0;
-    for (double e : m_Components)
+    double      q = b;
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < m_Size; ++i)
     {
       double sum;
       double err;
-      TwoSum(q, e, sum, err);
+      TwoSum(q, m_Components[i], sum, err);
       q = sum;
       if (err != 0.0)
       {
         m_Components[out++] = err;
       }
     }
-    m_Components.resize(out);
+    m_Size = out;
     if (q != 0.0)
     {
-      m_Components.push_back(q);
+      m_Components[m_Size++] = q;
     }
   }
 
@@ -115,16 +113,29 @@ public:
   int
   Sign() const
   {
-    if (m_Components.empty())
+    if (m_Size == 0)
     {
       return 0;
     }
-    return m_Components.back() > 0.0 ? 1 : -1;
+    return m_Components[m_Size - 1] > 0.0 ? 1 : -1;
   }
 
 private:
-  std::vector<double> m_Components;
+  // A sum of n doubles needs at most n non-overlapping components; the largest
+  // sums here have 96 terms.
+  double      m_Components[128];
+  std::size_t m_Size{ 0 };
 };
+
+/** x - y as an exact two-term expansion: x - y = d + t. */
+inline void
+TwoDiff(double x, double y, double & d, double & t)
+{
+  d = x - y;
+  const double bv = x - d;
+  const double av = d + bv;
+  t = (x - av) + (bv - y);
+}
 
 constexpr double Epsilon = 1.1102230246251565e-16; // 2^-53
 // Static filter bounds (Shewchuk's ccwerrboundA and o3derrboundA, rounded up).
@@ -306,7 +317,35 @@ Orient3D(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
   {
     return SignOf(det);
   }
+  // When the differences are exact (common: points on a grid, or close to each
+  // other), det[u, v, w] of those doubles is the exact value: 6 triple products.
+  Vec3 uu;
+  Vec3 vv;
+  Vec3 ww;
+  bool exactDifferences = true;
+  for (unsigned int k = 0; k < 3 && exactDifferences; ++k)
+  {
+    double t0;
+    double t1;
+    double t2;
+    TwoDiff(b[k], a[k], uu[k], t0);
+    TwoDiff(c[k], a[k], vv[k], t1);
+    TwoDiff(d[k], a[k], ww[k], t2);
+    exactDifferences = t0 == 0.0 && t1 == 0.0 && t2 == 0.0;
+  }
+  ExactSum s;
+  if (exactDifferences)
+  {
+    AddDet3(s, 1.0, uu, vv, ww);
+    return s.Sign();
+  }
   // det[b-a, c-a, d-a] = det[b,c,d] - det[a,c,d] - det[b,a,d] - det[b,c,a].
+  return Orient3DExact(a, b, c, d);
+}
+
+int
+Orient3DExact(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
+{
   ExactSum s;
   AddDet3(s, 1.0, b, c, d);
   AddDet3(s, -1.0, a, c, d);

@@ -181,6 +181,7 @@ TEST(ExactPredicates, Orient3DSignIsExactOnNearlyCoplanarPoints)
     const __int128 exact = ExactOrient3D(a, b, c, d);
     const int      expected = (exact > 0) - (exact < 0);
     ASSERT_EQ(Orient3D(Scaled(a), Scaled(b), Scaled(c), Scaled(d)), expected) << "trial " << trial;
+    ASSERT_EQ(Orient3DExact(Scaled(a), Scaled(b), Scaled(c), Scaled(d)), expected) << "trial " << trial;
     const Vec3   A = Scaled(a);
     const double naive = Dot(Cross(Scaled(b) - A, Scaled(c) - A), Scaled(d) - A);
     naiveWrong += ((naive > 0) - (naive < 0)) != expected ? 1 : 0;

@@ -1,0 +1,166 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionSurfaceNets_h
+#define itkMeshExtractionSurfaceNets_h
+
+#include "MeshExtractionExport.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMatrix.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+/** \brief The SurfaceNets cell: corner, edge and face numbering and, for each of
+ * the 256 inside/outside configurations, its surface sheets.
+ *
+ * A cell is the cube between 8 neighbouring voxel centres; corner k sits at
+ * offset (k & 1, (k >> 1) & 1, (k >> 2) & 1) and bit k of the configuration is set
+ * when that voxel is inside. Edge 4a + ob + 2oc runs along axis a at offsets ob,
+ * oc on the two following axes b = a+1, c = a+2 (mod 3). Face 2f + s is the face
+ * at offset s along axis f, its corners and edges listed in cyclic order.
+ *
+ * A sheet is one loop of the surface on the cell's faces; each becomes one node of
+ * the net. On an ambiguous face (inside corners on a diagonal, four crossing
+ * edges) the two surface segments either cut off the two inside corners
+ * (separate, the default: a 6-connected object) or the two outside corners (the
+ * face's bit set in `faceRules`). Both cells sharing a face use the same rule, so
+ * the loops are consistent; BuildSurfaceNet flips a face's rule where its two
+ * segments would otherwise join the same pair of nodes twice, which keeps the
+ * net a 2-manifold.
+ * \ingroup MeshExtraction
+ */
+struct MeshExtraction_EXPORT SurfaceNetsCellTable
+{
+  std::array<std::array<std::uint8_t, 2>, 12> edgeCorners; ///< corners at the low and high end of each edge
+  std::array<std::array<std::uint8_t, 4>, 6>  faceCorners;
+  std::array<std::array<std::uint8_t, 4>, 6>  faceEdges;   ///< faceEdges[f][i] joins faceCorners[f][i] and [i+1]
+  std::array<std::uint8_t, 256>               ambiguousFaces; ///< bit f: face f has four crossing edges
+
+  std::uint8_t
+  NumberOfSheets(std::uint8_t configuration, std::uint8_t faceRules) const
+  {
+    return m_NumberOfSheets[configuration * 64u + faceRules];
+  }
+  /** The sheet of a crossing edge, -1 for an edge that does not cross the surface. */
+  std::int8_t
+  SheetOfEdge(std::uint8_t configuration, std::uint8_t faceRules, unsigned int edge) const
+  {
+    return m_SheetOfEdge[configuration * 64u + faceRules][edge];
+  }
+
+  static const SurfaceNetsCellTable &
+  Get();
+
+private:
+  SurfaceNetsCellTable();
+  std::vector<std::uint8_t>                 m_NumberOfSheets;
+  std::vector<std::array<std::int8_t, 12>>  m_SheetOfEdge;
+};
+
+/** A surface cell: the lower-corner voxel index of the cell (each in [-1, N-1])
+ * and its configuration. */
+struct SurfaceCell
+{
+  std::int32_t  x;
+  std::int32_t  y;
+  std::int32_t  z;
+  std::uint8_t  configuration;
+  std::uint8_t  faceRules{ 0 }; ///< bit f: ambiguous face f cuts off its outside corners
+  std::uint32_t firstNode{ 0 };
+};
+
+/** \brief The SurfaceNet: nodes in continuous index space, each constrained to a
+ * box inside its cell, and the quadrilaterals that join them (one per voxel edge
+ * that crosses the surface, counter-clockwise seen from outside).
+ * \ingroup MeshExtraction
+ */
+struct MeshExtraction_EXPORT SurfaceNet
+{
+  std::array<std::int64_t, 3> size{ { 0, 0, 0 } }; ///< image size in voxels
+  std::vector<SurfaceCell>    cells;                 ///< sorted by (z, y, x)
+  std::vector<std::uint32_t>  rowStart;              ///< cells of cell-row (y, z): [rowStart[r], rowStart[r+1])
+
+  std::vector<Vec3>          positions;   ///< node positions, continuous index
+  std::vector<Vec3>          boxLower;    ///< node constraint box, continuous index
+  std::vector<Vec3>          boxUpper;
+  std::vector<std::uint32_t> nodeCell;    ///< cell of each node
+  std::vector<std::array<std::uint32_t, 4>> quads;
+  std::vector<std::uint8_t>  quadAxis;    ///< axis of the crossing voxel edge, +4 if outward is -axis
+  std::vector<std::uint32_t> neighborStart; ///< node links (the quads' edges): compressed rows
+  std::vector<std::uint32_t> neighbors;
+  std::size_t                numberOfSplitCells{ 0 };
+
+  /** Index of the surface cell with lower corner (x, y, z), or -1. */
+  std::int64_t
+  FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const;
+};
+
+/** Turn the surface cells of an image (sorted by z, y, x) into a net: one node
+ * per sheet, the quads, the links, and the nodes' constraint boxes: the cell
+ * shrunk by `margin` voxels, with the node starting at the cell centre (thesis
+ * 3.2.1). In a cell with several sheets each node is fixed at the centre of its
+ * sheet's edge midpoints, which keeps the sheets apart. Multithreaded,
+ * deterministic. */
+MeshExtraction_EXPORT void
+BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits = 0);
+
+/** The way quads become faces. */
+enum class QuadSplit : std::uint8_t
+{
+  ShortestDiagonal,
+  Delaunay,
+  KeepQuads
+};
+
+/** Faces of the net in physical space. `indexToPhysical` maps a continuous index
+ * to a point: p = origin + matrix * index. A quad is split along the diagonal the
+ * criterion prefers unless that would give a triangle facing away from the quad's
+ * voxel-edge direction; then the other diagonal is used. `polygons` receives
+ * triangles, or quads for KeepQuads. */
+MeshExtraction_EXPORT void
+MakeSurfaceNetFaces(const SurfaceNet &                     net,
+                    const Vec3 &                           origin,
+                    const Matrix<double, 3, 3> &           indexToPhysical,
+                    QuadSplit                              split,
+                    std::vector<Vec3> &                    points,
+                    std::vector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                         polygonSize);
+
+/** Stage 3b of SurfaceNets: where relaxed faces cross each other (two sheets
+ * pulled toward one iso-surface, e.g. where the object touches itself), move the
+ * nodes of the crossing faces back toward `initial` (halving their relocation,
+ * then resetting it) until no two faces intersect. The unrelaxed net (nodes at
+ * cell centres and sheet centres) is free of intersections, so this ends with an
+ * intersection-free net. Intersections are found with the exact test of
+ * TriangleMeshQualityCalculator. Returns the number of nodes moved back. */
+MeshExtraction_EXPORT std::size_t
+RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
+                                  const std::vector<Vec3> &    initial,
+                                  const Vec3 &                 origin,
+                                  const Matrix<double, 3, 3> & indexToPhysical,
+                                  QuadSplit                    split);
+
+} // namespace MeshExtraction
+} // namespace itk
+
+#endif

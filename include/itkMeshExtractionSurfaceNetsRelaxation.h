@@ -1,0 +1,450 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionSurfaceNetsRelaxation_h
+#define itkMeshExtractionSurfaceNetsRelaxation_h
+
+#include "itkMeshExtractionParallel.h"
+#include "itkMeshExtractionSurfaceNets.h"
+#include "itkDiscreteGaussianDerivativeImageFunction.h"
+#include "itkImage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+/** \brief Trilinear interpolation and central-difference gradients of an image in
+ * continuous index space (relative to the buffer's first voxel), extended beyond
+ * the image so that everything outside it is outside the object.
+ *
+ * A voxel beyond the border reads as the nearest border voxel mirrored to the
+ * outside of the iso-value: iso + max(|v - iso|, epsilon) on the outside side.
+ * The iso-surface then closes an object that touches the border exactly half a
+ * voxel beyond it, as a flat cap that meets the rest of the surface without a
+ * spurious ridge. ITK's interpolators require points inside the buffer
+ * (IsInsideBuffer), and the SurfaceNet reaches half a voxel beyond it, hence this
+ * sampler. \ingroup MeshExtraction */
+template <typename TImage>
+class SurfaceNetsSampler
+{
+public:
+  using PixelType = typename TImage::PixelType;
+
+  /** `outsideSign` is +1 if the outside of the object is above the iso-value, -1 if below. */
+  SurfaceNetsSampler(const TImage * image, double isoValue, double outsideSign)
+    : m_Buffer(image->GetBufferPointer())
+    , m_IsoValue(isoValue)
+    , m_OutsideSign(outsideSign)
+  {
+    const auto region = image->GetBufferedRegion();
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      m_Size[d] = static_cast<std::int64_t>(region.GetSize(d));
+    }
+  }
+
+  double
+  Value(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    if (x < 0 || y < 0 || z < 0 || x >= m_Size[0] || y >= m_Size[1] || z >= m_Size[2])
+    {
+      const std::int64_t cx = std::clamp<std::int64_t>(x, 0, m_Size[0] - 1);
+      const std::int64_t cy = std::clamp<std::int64_t>(y, 0, m_Size[1] - 1);
+      const std::int64_t cz = std::clamp<std::int64_t>(z, 0, m_Size[2] - 1);
+      const double       v = static_cast<double>(m_Buffer[(cz * m_Size[1] + cy) * m_Size[0] + cx]);
+      const double       epsilon = 1e-6 * (1.0 + std::abs(m_IsoValue));
+      return m_IsoValue + m_OutsideSign * std::max(std::abs(v - m_IsoValue), epsilon);
+    }
+    return static_cast<double>(m_Buffer[(z * m_Size[1] + y) * m_Size[0] + x]);
+  }
+
+  double
+  Interpolate(const Vec3 & p) const
+  {
+    const double       fx = std::floor(p[0]);
+    const double       fy = std::floor(p[1]);
+    const double       fz = std::floor(p[2]);
+    const std::int64_t x = static_cast<std::int64_t>(fx);
+    const std::int64_t y = static_cast<std::int64_t>(fy);
+    const std::int64_t z = static_cast<std::int64_t>(fz);
+    const double       u = p[0] - fx;
+    const double       v = p[1] - fy;
+    const double       w = p[2] - fz;
+    double             c[8];
+    if (x >= 0 && y >= 0 && z >= 0 && x + 1 < m_Size[0] && y + 1 < m_Size[1] && z + 1 < m_Size[2])
+    {
+      const PixelType * b = m_Buffer + (z * m_Size[1] + y) * m_Size[0] + x;
+      const std::int64_t sy = m_Size[0];
+      const std::int64_t sz = m_Size[0] * m_Size[1];
+      c[0] = b[0];
+      c[1] = b[1];
+      c[2] = b[sy];
+      c[3] = b[sy + 1];
+      c[4] = b[sz];
+      c[5] = b[sz + 1];
+      c[6] = b[sz + sy];
+      c[7] = b[sz + sy + 1];
+    }
+    else
+    {
+      for (unsigned int k = 0; k < 8; ++k)
+      {
+        c[k] = Value(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1));
+      }
+    }
+    const double c00 = c[0] + u * (c[1] - c[0]);
+    const double c10 = c[2] + u * (c[3] - c[2]);
+    const double c01 = c[4] + u * (c[5] - c[4]);
+    const double c11 = c[6] + u * (c[7] - c[6]);
+    const double c0 = c00 + v * (c10 - c00);
+    const double c1 = c01 + v * (c11 - c01);
+    return c0 + w * (c1 - c0);
+  }
+
+  /** dI/d(index) by central differences of the interpolated image, one voxel apart. */
+  Vec3
+  Gradient(const Vec3 & p) const
+  {
+    Vec3 g;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      Vec3 plus = p;
+      Vec3 minus = p;
+      plus[d] += 1.0;
+      minus[d] -= 1.0;
+      g[d] = 0.5 * (Interpolate(plus) - Interpolate(minus));
+    }
+    return g;
+  }
+
+  const std::int64_t *
+  GetSize() const
+  {
+    return m_Size;
+  }
+
+private:
+  const PixelType * m_Buffer;
+  double            m_IsoValue;
+  double            m_OutsideSign;
+  std::int64_t      m_Size[3];
+};
+
+/** \brief Gaussian-derivative gradients (ITK's DiscreteGaussianDerivativeImageFunction,
+ * one per derivative direction and work unit) at the corner voxels of every surface
+ * cell, computed once and trilinearly interpolated inside a node's cell.
+ *
+ * (ITK 5.2's GaussianDerivativeImageFunction is not used: it applies a 1-D
+ * derivative kernel without blurring across it, and returns the negated
+ * derivative.) \ingroup MeshExtraction */
+template <typename TImage>
+class SurfaceNetsGaussianGradient
+{
+public:
+  SurfaceNetsGaussianGradient(const TImage * image, const SurfaceNet & net, double sigma)
+    : m_Net(net)
+  {
+    const auto region = image->GetBufferedRegion();
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      m_Size[d] = static_cast<std::int64_t>(region.GetSize(d));
+      m_Start[d] = region.GetIndex(d);
+    }
+    m_Keys.reserve(net.cells.size() * 2);
+    for (const auto & c : net.cells)
+    {
+      for (unsigned int k = 0; k < 8; ++k)
+      {
+        m_Keys.push_back(Key(c.x + (k & 1), c.y + ((k >> 1) & 1), c.z + ((k >> 2) & 1)));
+      }
+    }
+    std::sort(m_Keys.begin(), m_Keys.end());
+    m_Keys.erase(std::unique(m_Keys.begin(), m_Keys.end()), m_Keys.end());
+    m_Gradients.resize(m_Keys.size());
+    const auto & spacing = image->GetSpacing();
+    // Initialize() builds the kernels with ITK's (multithreaded) filters, and
+    // evaluation changes mutable state: one set of functions, used serially.
+    using FunctionType = DiscreteGaussianDerivativeImageFunction<TImage, double>;
+    typename FunctionType::Pointer derivative[3];
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      derivative[d] = FunctionType::New();
+      derivative[d]->SetInputImage(image);
+      derivative[d]->SetSigma(sigma);
+      derivative[d]->SetUseImageSpacing(true);
+      derivative[d]->SetNormalizeAcrossScale(false);
+      typename FunctionType::OrderArrayType order;
+      order.Fill(0);
+      order[d] = 1;
+      derivative[d]->SetOrder(order);
+      derivative[d]->Initialize();
+    }
+    for (std::size_t i = 0; i < m_Keys.size(); ++i)
+    {
+      std::int64_t xyz[3];
+      Unkey(m_Keys[i], xyz);
+      typename TImage::IndexType index;
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        // Voxels beyond the image take the gradient of the nearest image voxel.
+        index[d] = m_Start[d] + std::clamp<std::int64_t>(xyz[d], 0, m_Size[d] - 1);
+      }
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        // Per millimetre along the image axis -> per voxel.
+        m_Gradients[i][d] = derivative[d]->EvaluateAtIndex(index) * spacing[d];
+      }
+    }
+  }
+
+  /** dI/d(index) at p, a point of the node's cell `cell`. */
+  Vec3
+  Gradient(const Vec3 & p, std::uint32_t cell) const
+  {
+    const SurfaceCell & c = m_Net.cells[cell];
+    const double        u = std::clamp(p[0] - c.x, 0.0, 1.0);
+    const double        v = std::clamp(p[1] - c.y, 0.0, 1.0);
+    const double        w = std::clamp(p[2] - c.z, 0.0, 1.0);
+    Vec3                corner[8];
+    for (unsigned int k = 0; k < 8; ++k)
+    {
+      const std::int64_t key = Key(c.x + (k & 1), c.y + ((k >> 1) & 1), c.z + ((k >> 2) & 1));
+      corner[k] = m_Gradients[std::lower_bound(m_Keys.begin(), m_Keys.end(), key) - m_Keys.begin()];
+    }
+    const Vec3 c00 = corner[0] + (corner[1] - corner[0]) * u;
+    const Vec3 c10 = corner[2] + (corner[3] - corner[2]) * u;
+    const Vec3 c01 = corner[4] + (corner[5] - corner[4]) * u;
+    const Vec3 c11 = corner[6] + (corner[7] - corner[6]) * u;
+    const Vec3 c0 = c00 + (c10 - c00) * v;
+    const Vec3 c1 = c01 + (c11 - c01) * v;
+    return c0 + (c1 - c0) * w;
+  }
+
+private:
+  std::int64_t
+  Key(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    return ((z + 1) * (m_Size[1] + 2) + (y + 1)) * (m_Size[0] + 2) + (x + 1);
+  }
+  void
+  Unkey(std::int64_t key, std::int64_t xyz[3]) const
+  {
+    xyz[0] = key % (m_Size[0] + 2) - 1;
+    key /= (m_Size[0] + 2);
+    xyz[1] = key % (m_Size[1] + 2) - 1;
+    xyz[2] = key / (m_Size[1] + 2) - 1;
+  }
+
+  const SurfaceNet &        m_Net;
+  std::int64_t              m_Size[3];
+  IndexValueType            m_Start[3];
+  std::vector<std::int64_t> m_Keys;
+  std::vector<Vec3>         m_Gradients;
+};
+
+/** How the nodes move (thesis section 3.2). */
+enum class SurfaceNetsRelaxationKind : std::uint8_t
+{
+  None,      ///< nodes stay where the net put them
+  Averaging, ///< SNA: to the average of the linked nodes (eq. 3.1-3.2)
+  Gradient,  ///< along the gradient to the iso-surface (eq. 3.3-3.4)
+  Combined   ///< SNERT: averaging within the iso-surface plus the gradient step (eq. 3.5-3.6)
+};
+
+struct SurfaceNetsRelaxationParameters
+{
+  SurfaceNetsRelaxationKind kind{ SurfaceNetsRelaxationKind::Combined };
+  unsigned int              maximumNumberOfIterations{ 20 };
+  double                    convergenceThreshold{ 1e-3 }; ///< largest relocation (voxels) that ends the iterations
+  double                    smoothingWeight{ 1.0 };       ///< weight of the averaging vector
+  double                    projectionWeight{ 1.0 };      ///< weight of the step to the iso-surface
+  bool                      sequential{ false };          ///< average, then project, within each iteration (3.2.4)
+  double                    isoValue{ 0.0 };
+  Matrix<double, 3, 3>      indexToPhysical;              ///< direction * diag(spacing)
+  unsigned int              numberOfWorkUnits{ 0 };
+};
+
+struct SurfaceNetsRelaxationResult
+{
+  unsigned int iterations{ 0 };
+  double       lastMaximumRelocation{ 0.0 };
+};
+
+/** Scale d so that p + d stays in the box [lower, upper] (thesis eq. 3.2, the
+ * function c: the relocation is shortened along its own direction, not clipped
+ * per axis). p must be in the box. */
+inline Vec3
+ConstrainToBox(const Vec3 & p, const Vec3 & d, const Vec3 & lower, const Vec3 & upper)
+{
+  double t = 1.0;
+  for (unsigned int k = 0; k < 3; ++k)
+  {
+    if (d[k] > 0.0)
+    {
+      t = std::min(t, (upper[k] - p[k]) / d[k]);
+    }
+    else if (d[k] < 0.0)
+    {
+      t = std::min(t, (lower[k] - p[k]) / d[k]);
+    }
+  }
+  return d * std::max(t, 0.0);
+}
+
+/** Stage 3 of SurfaceNets: relax the nodes with batch (Jacobi) updates until the
+ * largest relocation falls below the threshold or the iteration limit is reached.
+ * Vectors are built in physical space (the projection on the plane
+ * perpendicular to the gradient needs true angles), constrained in index space
+ * (where a cell is a unit cube). `gradient(p, node)` returns dI/d(index).
+ * Deterministic for any number of threads. \ingroup MeshExtraction */
+template <typename TSampler, typename TGradient>
+SurfaceNetsRelaxationResult
+RelaxSurfaceNet(SurfaceNet &                              net,
+                const TSampler *                          sampler,
+                TGradient &&                              gradient,
+                const SurfaceNetsRelaxationParameters &   parameters,
+                const std::function<void(double)> &       progress = nullptr)
+{
+  SurfaceNetsRelaxationResult result;
+  if (parameters.kind == SurfaceNetsRelaxationKind::None || parameters.maximumNumberOfIterations == 0)
+  {
+    return result;
+  }
+  const bool useGradient = parameters.kind != SurfaceNetsRelaxationKind::Averaging;
+  const bool useAveraging = parameters.kind != SurfaceNetsRelaxationKind::Gradient;
+  if (useGradient && sampler == nullptr)
+  {
+    itkGenericExceptionMacro("SurfaceNets: gradient relaxation needs a greyscale image.");
+  }
+  const Matrix<double, 3, 3> M = parameters.indexToPhysical;
+  const Matrix<double, 3, 3> Minv(M.GetInverse());
+  const Matrix<double, 3, 3> MinvT(Minv.GetTranspose());
+  double                     smallestSpacing = std::numeric_limits<double>::max();
+  double                     cellDiagonal = 0.0;
+  for (unsigned int c = 0; c < 3; ++c)
+  {
+    const double length = std::sqrt(M[0][c] * M[0][c] + M[1][c] * M[1][c] + M[2][c] * M[2][c]);
+    smallestSpacing = std::min(smallestSpacing, length);
+    cellDiagonal += length * length;
+  }
+  cellDiagonal = std::sqrt(cellDiagonal);
+  const double h = 0.5 * smallestSpacing; // finite-difference step along the gradient (mm)
+
+  const std::size_t       numberOfNodes = net.positions.size();
+  std::vector<Vec3>       next(numberOfNodes);
+  constexpr std::size_t   BlockSize = 2048;
+  const std::size_t       numberOfBlocks = (numberOfNodes + BlockSize - 1) / BlockSize;
+  std::vector<double>     blockMaximum(numberOfBlocks);
+
+  // The step to the iso-surface from p along the unit physical gradient n (mm),
+  // from a linear model of the image along n (thesis 3.2.3).
+  auto projection = [&](const Vec3 & p, std::uint32_t node, Vec3 & n) -> double {
+    const Vec3   g = MinvT * gradient(p, node);
+    const double magnitude = Norm(g);
+    if (!(magnitude > 0.0))
+    {
+      n.Fill(0.0);
+      return 0.0;
+    }
+    n = g * (1.0 / magnitude);
+    const Vec3   step = Minv * (n * h);
+    const double value = sampler->Interpolate(p);
+    // The image's own slope along n (a smoothed gradient may disagree with it).
+    const double slope = (sampler->Interpolate(p + step) - sampler->Interpolate(p - step)) / (2.0 * h);
+    if (!(std::abs(slope) > 1e-3 * magnitude))
+    {
+      return 0.0; // flat along n: no reliable step
+    }
+    return std::clamp((parameters.isoValue - value) / slope, -cellDiagonal, cellDiagonal);
+  };
+
+  for (unsigned int iteration = 0; iteration < parameters.maximumNumberOfIterations; ++iteration)
+  {
+    ParallelForBlocks(
+      numberOfNodes,
+      BlockSize,
+      [&](std::size_t begin, std::size_t end, std::size_t block) {
+        double largest = 0.0;
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          const Vec3 & p = net.positions[i];
+          Vec3         average = MakeVec3(0, 0, 0);
+          const auto   first = net.neighborStart[i];
+          const auto   last = net.neighborStart[i + 1];
+          for (auto k = first; k < last; ++k)
+          {
+            average += net.positions[net.neighbors[k]];
+          }
+          Vec3 a = (last > first) ? average * (1.0 / (last - first)) - p : MakeVec3(0, 0, 0);
+          Vec3 moved = p;
+          if (!useGradient)
+          {
+            moved += ConstrainToBox(p, a * parameters.smoothingWeight, net.boxLower[i], net.boxUpper[i]);
+          }
+          else
+          {
+            Vec3         n;
+            const double distance = projection(p, static_cast<std::uint32_t>(i), n);
+            Vec3         tangential = MakeVec3(0, 0, 0);
+            if (useAveraging)
+            {
+              const Vec3 aPhysical = M * a;
+              tangential = Minv * (aPhysical - n * Dot(n, aPhysical)) * parameters.smoothingWeight; // eq. 3.5
+            }
+            if (parameters.sequential)
+            {
+              moved += ConstrainToBox(moved, tangential, net.boxLower[i], net.boxUpper[i]);
+              Vec3         n2;
+              const double d2 = projection(moved, static_cast<std::uint32_t>(i), n2);
+              moved += ConstrainToBox(
+                moved, Minv * (n2 * (d2 * parameters.projectionWeight)), net.boxLower[i], net.boxUpper[i]);
+            }
+            else
+            {
+              const Vec3 d = tangential + Minv * (n * (distance * parameters.projectionWeight)); // eq. 3.6
+              moved += ConstrainToBox(p, d, net.boxLower[i], net.boxUpper[i]);
+            }
+          }
+          largest = std::max(largest, Norm(moved - p));
+          next[i] = moved;
+        }
+        blockMaximum[block] = largest;
+      },
+      parameters.numberOfWorkUnits);
+    net.positions.swap(next);
+    result.iterations = iteration + 1;
+    result.lastMaximumRelocation = numberOfBlocks ? *std::max_element(blockMaximum.begin(), blockMaximum.end()) : 0.0;
+    if (progress)
+    {
+      progress(static_cast<double>(iteration + 1) / parameters.maximumNumberOfIterations);
+    }
+    if (result.lastMaximumRelocation < parameters.convergenceThreshold)
+    {
+      break;
+    }
+  }
+  return result;
+}
+
+} // namespace MeshExtraction
+} // namespace itk
+
+#endif

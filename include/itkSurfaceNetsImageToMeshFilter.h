@@ -1,0 +1,235 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkSurfaceNetsImageToMeshFilter_h
+#define itkSurfaceNetsImageToMeshFilter_h
+
+#include "MeshExtractionExport.h"
+#include "itkImage.h"
+#include "itkImageToMeshFilter.h"
+#include "itkMeshExtractionMacros.h"
+#include "itkMeshExtractionSurfaceNets.h"
+#include "itkQuadEdgeMesh.h"
+#include "itkSurfaceNetsImageToMeshFilterEnums.h"
+
+namespace itk
+{
+/** \class SurfaceNetsImageToMeshFilter
+ * \brief Extracts a closed, 2-manifold, outward-oriented triangle (or quad) mesh
+ * from a 3-D image with the SurfaceNets of Gibson, extended with greyscale
+ * relaxation (SNERT) as in P.W. de Bruin's thesis, chapter 3.
+ *
+ * Inputs: a greyscale image and an IsoValue (InsideIsAboveIsoValue says which side
+ * is the object); or a label image (ClassifyByLabel on, LabelValue the object's
+ * label: Gibson's binary SurfaceNet); or both, a greyscale input plus a LabelImage:
+ * the net is built from the segmentation and relaxed toward the greyscale
+ * iso-surface. Voxels outside the image count as outside, so objects touching the
+ * border are closed.
+ *
+ * The stages, each in its own unit:
+ * 1. classify cells (cubes between 8 voxel centres) — ClassifySurfaceCells;
+ * 2. build the net: one node per surface sheet of a cell, the quadrilateral of
+ *    every voxel edge crossing the surface, the links — BuildSurfaceNet;
+ * 3. relax the nodes, each constrained to its cell — RelaxSurfaceNet;
+ * 4. form faces in physical space — MakeSurfaceNetFaces.
+ *
+ * Guarantees: the output is closed, 2-manifold and consistently oriented with
+ * normals pointing out of the object, for every configuration. A cell where the
+ * object touches itself at an edge or a corner, or a checkerboard face, gets one
+ * node per sheet (manifold dual contouring) instead of a non-manifold vertex. Nodes
+ * stay a margin (CellMargin, default 0.01 voxel) inside their cell, and each
+ * quadrilateral is split along a diagonal that keeps both triangles facing along
+ * the quad's voxel edge, so no triangle is degenerate or inverted. Spacing, origin
+ * and direction are honoured (the cell constraint is applied in index space, the
+ * relaxation vectors are built in physical space). Classification, net building
+ * and relaxation run on ITK's multithreader; the mesh is identical for any number
+ * of threads. Memory beyond the input image is proportional to the surface.
+ *
+ * Bad input raises an itk::ExceptionObject: no input, NaN voxels (the first one is
+ * named), a constant image, no voxel inside, a label image of another geometry,
+ * gradient relaxation without a greyscale image, out-of-range parameters.
+ *
+ * \ingroup MeshExtraction
+ */
+template <typename TInputImage,
+          typename TOutputMesh = QuadEdgeMesh<double, TInputImage::ImageDimension>,
+          typename TLabelImage = Image<unsigned char, TInputImage::ImageDimension>>
+class ITK_TEMPLATE_EXPORT SurfaceNetsImageToMeshFilter : public ImageToMeshFilter<TInputImage, TOutputMesh>
+{
+public:
+  ITK_DISALLOW_COPY_AND_MOVE(SurfaceNetsImageToMeshFilter);
+
+  using Self = SurfaceNetsImageToMeshFilter;
+  using Superclass = ImageToMeshFilter<TInputImage, TOutputMesh>;
+  using Pointer = SmartPointer<Self>;
+  using ConstPointer = SmartPointer<const Self>;
+
+  itkNewMacro(Self);
+  itkOverrideGetNameOfClassMacro(SurfaceNetsImageToMeshFilter);
+
+  static constexpr unsigned int ImageDimension = TInputImage::ImageDimension;
+  static_assert(ImageDimension == 3, "SurfaceNetsImageToMeshFilter extracts surfaces from 3-D images.");
+
+  using InputImageType = TInputImage;
+  using InputPixelType = typename InputImageType::PixelType;
+  using LabelImageType = TLabelImage;
+  using OutputMeshType = TOutputMesh;
+
+  using RelaxationEnum = SurfaceNetsImageToMeshFilterEnums::Relaxation;
+  using TriangulationEnum = SurfaceNetsImageToMeshFilterEnums::Triangulation;
+  using GradientEnum = SurfaceNetsImageToMeshFilterEnums::Gradient;
+
+  /** Optional segmentation: the net is built from LabelImage == LabelValue and
+   * relaxed toward the greyscale input's iso-surface. Same grid as the input. */
+  itkSetInputMacro(LabelImage, LabelImageType);
+  itkGetInputMacro(LabelImage, LabelImageType);
+
+  /** The iso-value of the greyscale input (default 0). */
+  itkSetMacro(IsoValue, double);
+  itkGetConstMacro(IsoValue, double);
+  /** True (default): voxels >= IsoValue are the object (CT bone, a bright organ).
+   * False: voxels <= IsoValue are (a signed distance map, negative inside). */
+  itkSetMacro(InsideIsAboveIsoValue, bool);
+  itkGetConstMacro(InsideIsAboveIsoValue, bool);
+  itkBooleanMacro(InsideIsAboveIsoValue);
+  /** The input itself is a label image; the object is its LabelValue voxels. */
+  itkSetMacro(ClassifyByLabel, bool);
+  itkGetConstMacro(ClassifyByLabel, bool);
+  itkBooleanMacro(ClassifyByLabel);
+  /** The object's label in the label image (default 1). */
+  itkSetMacro(LabelValue, double);
+  itkGetConstMacro(LabelValue, double);
+
+  /** Relaxation (default Automatic: SNERT with a greyscale image, SNA without). */
+  itkSetEnumMacro(Relaxation, RelaxationEnum);
+  itkGetEnumMacro(Relaxation, RelaxationEnum);
+  /** Iteration limit of the relaxation (default 20). */
+  itkSetMacro(MaximumNumberOfIterations, unsigned int);
+  itkGetConstMacro(MaximumNumberOfIterations, unsigned int);
+  /** The relaxation stops when no node moved more than this (voxels, default 1e-3). */
+  itkSetMacro(ConvergenceThreshold, double);
+  itkGetConstMacro(ConvergenceThreshold, double);
+  /** Weight of the averaging vector a_p of eq. 3.5 (default 1, the thesis' SNERT). */
+  itkSetMacro(SmoothingWeight, double);
+  itkGetConstMacro(SmoothingWeight, double);
+  /** Weight of the step to the iso-surface (default 1). */
+  itkSetMacro(ProjectionWeight, double);
+  itkGetConstMacro(ProjectionWeight, double);
+  /** Average, then project, within each iteration, ending with the iso-surface
+   * (thesis 3.2.4); default off: both in one step (eq. 3.6). */
+  itkSetMacro(SequentialRelaxation, bool);
+  itkGetConstMacro(SequentialRelaxation, bool);
+  itkBooleanMacro(SequentialRelaxation);
+  /** Gradient estimate (default central differences) and the Gaussian's scale in mm. */
+  itkSetEnumMacro(GradientMethod, GradientEnum);
+  itkGetEnumMacro(GradientMethod, GradientEnum);
+  itkSetMacro(GradientSigma, double);
+  itkGetConstMacro(GradientSigma, double);
+
+  /** Faces (default shortest diagonal). */
+  itkSetEnumMacro(Triangulation, TriangulationEnum);
+  itkGetEnumMacro(Triangulation, TriangulationEnum);
+  /** Undo relaxation where faces would cross (default on): nodes of crossing
+   * faces move back toward their cell centres until the mesh is free of
+   * self-intersections (see GetNumberOfNodesMovedBack). */
+  itkSetMacro(PreventSelfIntersections, bool);
+  itkGetConstMacro(PreventSelfIntersections, bool);
+  itkBooleanMacro(PreventSelfIntersections);
+  /** Distance (voxels) nodes keep from their cell's faces (default 0.01). */
+  itkSetMacro(CellMargin, double);
+  itkGetConstMacro(CellMargin, double);
+  // The multithreaded stages use ProcessObject's NumberOfWorkUnits.
+
+  /** After Update(): relaxation iterations run, the last largest relocation (voxels),
+   * the number of nodes, of cells split into several nodes, and of nodes moved
+   * back to keep faces from crossing. */
+  itkGetConstMacro(NumberOfIterations, unsigned int);
+  itkGetConstMacro(LastMaximumRelocation, double);
+  itkGetConstMacro(NumberOfNodes, SizeValueType);
+  itkGetConstMacro(NumberOfSplitCells, SizeValueType);
+  itkGetConstMacro(NumberOfNodesMovedBack, SizeValueType);
+
+  /** After Update(): the net itself (nodes in continuous index space, quads, links). */
+  const MeshExtraction::SurfaceNet &
+  GetSurfaceNet() const
+  {
+    return m_Net;
+  }
+
+protected:
+  SurfaceNetsImageToMeshFilter();
+  ~SurfaceNetsImageToMeshFilter() override = default;
+
+  void
+  GenerateData() override;
+  void
+  GenerateOutputInformation() override
+  {}
+  void
+  PrintSelf(std::ostream & os, Indent indent) const override;
+
+  /** Stage 1: surface cells of the input (or the label image). */
+  void
+  ClassifyCells();
+  /** Stage 3: relax with the parameters; sets the iteration counters. */
+  void
+  RelaxNet(RelaxationEnum relaxation);
+  /** Stage 4: faces in physical space, into the output mesh. */
+  void
+  MakeOutputMesh();
+  /** The index-to-physical matrix (direction * spacing), the physical point of the
+   * buffer's first voxel, and the face split of the Triangulation setting. */
+  void
+  GetGeometry(Matrix<double, 3, 3> & indexToPhysical, MeshExtraction::Vec3 & first) const;
+  MeshExtraction::QuadSplit
+  GetQuadSplit() const;
+
+private:
+  void
+  VerifyParameters() const;
+
+  double            m_IsoValue{ 0.0 };
+  bool              m_InsideIsAboveIsoValue{ true };
+  bool              m_ClassifyByLabel{ false };
+  double            m_LabelValue{ 1.0 };
+  RelaxationEnum    m_Relaxation{ RelaxationEnum::Automatic };
+  unsigned int      m_MaximumNumberOfIterations{ 20 };
+  double            m_ConvergenceThreshold{ 1e-3 };
+  double            m_SmoothingWeight{ 1.0 };
+  double            m_ProjectionWeight{ 1.0 };
+  bool              m_SequentialRelaxation{ false };
+  GradientEnum      m_GradientMethod{ GradientEnum::CentralDifference };
+  double            m_GradientSigma{ 1.0 };
+  TriangulationEnum m_Triangulation{ TriangulationEnum::ShortestDiagonal };
+  double            m_CellMargin{ 0.01 };
+  bool              m_PreventSelfIntersections{ true };
+
+  unsigned int  m_NumberOfIterations{ 0 };
+  double        m_LastMaximumRelocation{ 0.0 };
+  SizeValueType m_NumberOfNodes{ 0 };
+  SizeValueType m_NumberOfSplitCells{ 0 };
+  SizeValueType m_NumberOfNodesMovedBack{ 0 };
+
+  MeshExtraction::SurfaceNet m_Net;
+};
+} // namespace itk
+
+#ifndef ITK_MANUAL_INSTANTIATION
+#  include "itkSurfaceNetsImageToMeshFilter.hxx"
+#endif
+
+#endif

@@ -1,0 +1,402 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkSurfaceNetsImageToMeshFilter_hxx
+#define itkSurfaceNetsImageToMeshFilter_hxx
+
+#include "itkSurfaceNetsImageToMeshFilter.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionSurfaceNetsClassification.h"
+#include "itkMeshExtractionSurfaceNetsRelaxation.h"
+#include "itkQuadrilateralCell.h"
+#include "itkTriangleCell.h"
+
+namespace itk
+{
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::SurfaceNetsImageToMeshFilter()
+{
+  this->AddOptionalInputName("LabelImage");
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParameters() const
+{
+  if (!std::isfinite(m_IsoValue))
+  {
+    itkExceptionMacro("IsoValue must be finite, got " << m_IsoValue << '.');
+  }
+  if (!(m_ConvergenceThreshold >= 0.0))
+  {
+    itkExceptionMacro("ConvergenceThreshold must be >= 0 voxels, got " << m_ConvergenceThreshold << '.');
+  }
+  if (!(m_SmoothingWeight >= 0.0 && m_SmoothingWeight <= 1.0))
+  {
+    itkExceptionMacro("SmoothingWeight must be in [0, 1], got " << m_SmoothingWeight << '.');
+  }
+  if (!(m_ProjectionWeight >= 0.0 && m_ProjectionWeight <= 1.0))
+  {
+    itkExceptionMacro("ProjectionWeight must be in [0, 1], got " << m_ProjectionWeight << '.');
+  }
+  if (m_GradientMethod == GradientEnum::GaussianDerivative && !(m_GradientSigma > 0.0))
+  {
+    itkExceptionMacro("GradientSigma must be > 0 mm for Gaussian-derivative gradients, got " << m_GradientSigma << '.');
+  }
+  if (!(m_CellMargin >= 0.0 && m_CellMargin <= 0.25))
+  {
+    itkExceptionMacro("CellMargin must be in [0, 0.25] voxels, got " << m_CellMargin << '.');
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCells()
+{
+  const InputImageType * input = this->GetInput();
+  const LabelImageType * labels = this->GetLabelImage();
+  const unsigned int     workUnits = this->GetNumberOfWorkUnits();
+  auto                   index = [](const auto * image, const std::int64_t local[3]) {
+    auto i = image->GetBufferedRegion().GetIndex();
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      i[d] += local[d];
+    }
+    return i;
+  };
+
+  MeshExtraction::SurfaceNetsClassificationStatistics greyscale;
+  if (labels != nullptr || m_ClassifyByLabel)
+  {
+    const double label = m_LabelValue;
+    MeshExtraction::SurfaceNetsClassificationStatistics stats;
+    if (labels != nullptr)
+    {
+      if (labels->GetBufferedRegion().GetSize() != input->GetBufferedRegion().GetSize() ||
+          !labels->GetSpacing().GetVnlVector().is_equal(input->GetSpacing().GetVnlVector(), 1e-6) ||
+          labels->GetOrigin().EuclideanDistanceTo(input->GetOrigin()) > 1e-6 ||
+          !labels->GetDirection().GetVnlMatrix().is_equal(input->GetDirection().GetVnlMatrix(), 1e-6))
+      {
+        itkExceptionMacro("LabelImage must have the input's grid: size " << input->GetBufferedRegion().GetSize()
+                                                                         << ", spacing " << input->GetSpacing()
+                                                                         << ", origin " << input->GetOrigin()
+                                                                         << "; it has size "
+                                                                         << labels->GetBufferedRegion().GetSize()
+                                                                         << ", spacing " << labels->GetSpacing()
+                                                                         << ", origin " << labels->GetOrigin() << '.');
+      }
+      stats = MeshExtraction::ClassifySurfaceCells(
+        labels, [label](typename LabelImageType::PixelType v) { return static_cast<double>(v) == label; }, m_Net, workUnits);
+      // The greyscale range and NaN check, for the relaxation.
+      MeshExtraction::SurfaceNet scratch;
+      greyscale = MeshExtraction::ClassifySurfaceCells(
+        input, [](InputPixelType) { return false; }, scratch, workUnits);
+    }
+    else
+    {
+      stats = MeshExtraction::ClassifySurfaceCells(
+        input, [label](InputPixelType v) { return static_cast<double>(v) == label; }, m_Net, workUnits);
+      greyscale = stats;
+    }
+    if (stats.foundNaN)
+    {
+      itkExceptionMacro("The label image has a NaN voxel at index " << index(input, stats.nanVoxel) << '.');
+    }
+    if (stats.insideVoxels == 0)
+    {
+      itkExceptionMacro("No voxel has the label " << m_LabelValue << " (the labels range over [" << stats.minimum
+                                                  << ", " << stats.maximum << "]): there is no surface.");
+    }
+  }
+  else
+  {
+    const double iso = m_IsoValue;
+    if (m_InsideIsAboveIsoValue)
+    {
+      greyscale = MeshExtraction::ClassifySurfaceCells(
+        input, [iso](InputPixelType v) { return static_cast<double>(v) >= iso; }, m_Net, workUnits);
+    }
+    else
+    {
+      greyscale = MeshExtraction::ClassifySurfaceCells(
+        input, [iso](InputPixelType v) { return static_cast<double>(v) <= iso; }, m_Net, workUnits);
+    }
+    if (!greyscale.foundNaN && greyscale.minimum == greyscale.maximum)
+    {
+      itkExceptionMacro("The input image is constant (every voxel is " << greyscale.minimum
+                                                                        << "): there is no iso-surface.");
+    }
+    if (!greyscale.foundNaN && greyscale.insideVoxels == 0)
+    {
+      itkExceptionMacro("No voxel is inside: the image ranges over ["
+                        << greyscale.minimum << ", " << greyscale.maximum << "] and the object is the voxels "
+                        << (m_InsideIsAboveIsoValue ? ">= " : "<= ") << m_IsoValue
+                        << " (IsoValue, InsideIsAboveIsoValue = " << m_InsideIsAboveIsoValue << ").");
+    }
+  }
+  if (greyscale.foundNaN)
+  {
+    itkExceptionMacro("The input image has a NaN voxel at index " << index(input, greyscale.nanVoxel) << '.');
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(RelaxationEnum relaxation)
+{
+  using namespace MeshExtraction;
+  const InputImageType *          input = this->GetInput();
+  SurfaceNetsRelaxationParameters p;
+  switch (relaxation)
+  {
+    case RelaxationEnum::None:
+    case RelaxationEnum::Automatic:
+      p.kind = SurfaceNetsRelaxationKind::None;
+      break;
+    case RelaxationEnum::Averaging:
+      p.kind = SurfaceNetsRelaxationKind::Averaging;
+      break;
+    case RelaxationEnum::Gradient:
+      p.kind = SurfaceNetsRelaxationKind::Gradient;
+      break;
+    case RelaxationEnum::Combined:
+      p.kind = SurfaceNetsRelaxationKind::Combined;
+      break;
+  }
+  p.maximumNumberOfIterations = m_MaximumNumberOfIterations;
+  p.convergenceThreshold = m_ConvergenceThreshold;
+  p.smoothingWeight = m_SmoothingWeight;
+  p.projectionWeight = m_ProjectionWeight;
+  p.sequential = m_SequentialRelaxation;
+  p.isoValue = m_IsoValue;
+  p.numberOfWorkUnits = this->GetNumberOfWorkUnits();
+  for (unsigned int r = 0; r < 3; ++r)
+  {
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      p.indexToPhysical[r][c] = input->GetDirection()[r][c] * input->GetSpacing()[c];
+    }
+  }
+  auto progress = [this](double fraction) { this->UpdateProgress(static_cast<float>(0.3 + 0.5 * fraction)); };
+
+  const SurfaceNetsSampler<InputImageType> sampler(input, m_IsoValue, m_InsideIsAboveIsoValue ? -1.0 : 1.0);
+
+  SurfaceNetsRelaxationResult result;
+  if (p.kind == SurfaceNetsRelaxationKind::Averaging || p.kind == SurfaceNetsRelaxationKind::None)
+  {
+    result = RelaxSurfaceNet(
+      m_Net, &sampler, [](const Vec3 &, std::uint32_t) { return MakeVec3(0, 0, 0); }, p, progress);
+  }
+  else if (m_GradientMethod == GradientEnum::GaussianDerivative)
+  {
+    const SurfaceNetsGaussianGradient<InputImageType> gaussian(input, m_Net, m_GradientSigma);
+    result = RelaxSurfaceNet(
+      m_Net,
+      &sampler,
+      [this, &gaussian](const Vec3 & q, std::uint32_t node) { return gaussian.Gradient(q, m_Net.nodeCell[node]); },
+      p,
+      progress);
+  }
+  else
+  {
+    result = RelaxSurfaceNet(
+      m_Net, &sampler, [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); }, p, progress);
+  }
+  m_NumberOfIterations = result.iterations;
+  m_LastMaximumRelocation = result.lastMaximumRelocation;
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetGeometry(Matrix<double, 3, 3> & M,
+                                                                                 MeshExtraction::Vec3 & first) const
+{
+  const auto * input = static_cast<const InputImageType *>(this->ProcessObject::GetInput(0));
+  for (unsigned int r = 0; r < 3; ++r)
+  {
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      M[r][c] = input->GetDirection()[r][c] * input->GetSpacing()[c];
+    }
+  }
+  // Net positions are relative to the buffer's first voxel.
+  ContinuousIndex<double, 3> start;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    start[d] = static_cast<double>(input->GetBufferedRegion().GetIndex(d));
+  }
+  Point<double, 3> point;
+  input->TransformContinuousIndexToPhysicalPoint(start, point);
+  first = MeshExtraction::ToVec3(point);
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+MeshExtraction::QuadSplit
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetQuadSplit() const
+{
+  switch (m_Triangulation)
+  {
+    case TriangulationEnum::Delaunay:
+      return MeshExtraction::QuadSplit::Delaunay;
+    case TriangulationEnum::Quadrilaterals:
+      return MeshExtraction::QuadSplit::KeepQuads;
+    default:
+      return MeshExtraction::QuadSplit::ShortestDiagonal;
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputMesh()
+{
+  using namespace MeshExtraction;
+  Matrix<double, 3, 3> M;
+  Vec3                 first;
+  this->GetGeometry(M, first);
+  std::vector<Vec3>                         points;
+  std::vector<std::array<std::uint32_t, 4>> polygons;
+  unsigned int                              polygonSize = 3;
+  MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize);
+
+  OutputMeshType * output = this->GetOutput();
+  output->Initialize();
+  using PointType = typename OutputMeshType::PointType;
+  using CoordinateType = typename PointType::ValueType;
+  output->GetPoints()->Reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    PointType p;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      p[d] = static_cast<CoordinateType>(points[i][d]);
+    }
+    output->SetPoint(static_cast<typename OutputMeshType::PointIdentifier>(i), p);
+  }
+  if constexpr (Detail::IsQuadEdgeMesh<OutputMeshType>::value)
+  {
+    typename OutputMeshType::PointIdList ids(polygonSize);
+    for (std::size_t f = 0; f < polygons.size(); ++f)
+    {
+      for (unsigned int k = 0; k < polygonSize; ++k)
+      {
+        ids[k] = polygons[f][k];
+      }
+      if (output->AddFace(ids) == nullptr)
+      {
+        itkExceptionMacro("Internal error: the QuadEdgeMesh refused face " << f << " of the SurfaceNet.");
+      }
+    }
+  }
+  else
+  {
+    using CellType = typename OutputMeshType::CellType;
+    for (std::size_t f = 0; f < polygons.size(); ++f)
+    {
+      typename CellType::CellAutoPointer cell;
+      if (polygonSize == 3)
+      {
+        cell.TakeOwnership(new TriangleCell<CellType>);
+      }
+      else
+      {
+        cell.TakeOwnership(new QuadrilateralCell<CellType>);
+      }
+      for (unsigned int k = 0; k < polygonSize; ++k)
+      {
+        cell->SetPointId(k, polygons[f][k]);
+      }
+      output->SetCell(static_cast<typename OutputMeshType::CellIdentifier>(f), cell);
+    }
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateData()
+{
+  if (this->GetInput() == nullptr)
+  {
+    itkExceptionMacro("No input image: call SetInput() first.");
+  }
+  this->VerifyParameters();
+  RelaxationEnum relaxation = m_Relaxation;
+  const bool     haveGreyscale = !m_ClassifyByLabel;
+  if (relaxation == RelaxationEnum::Automatic)
+  {
+    relaxation = haveGreyscale ? RelaxationEnum::Combined : RelaxationEnum::Averaging;
+  }
+  if (!haveGreyscale && (relaxation == RelaxationEnum::Gradient || relaxation == RelaxationEnum::Combined))
+  {
+    itkExceptionMacro("Relaxation " << relaxation
+                                    << " steps to a greyscale iso-surface, but the input is a label image "
+                                       "(ClassifyByLabel): use Averaging, or give the greyscale image as input "
+                                       "and the labels as LabelImage.");
+  }
+
+  this->UpdateProgress(0.0f);
+  this->ClassifyCells(); // 1
+  this->UpdateProgress(0.2f);
+  MeshExtraction::BuildSurfaceNet(m_Net, m_CellMargin, this->GetNumberOfWorkUnits()); // 2
+  m_NumberOfNodes = m_Net.positions.size();
+  m_NumberOfSplitCells = m_Net.numberOfSplitCells;
+  this->UpdateProgress(0.3f);
+  const std::vector<MeshExtraction::Vec3> initial = m_Net.positions;
+  this->RelaxNet(relaxation); // 3
+  this->UpdateProgress(0.75f);
+  m_NumberOfNodesMovedBack = 0;
+  if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
+  {
+    Matrix<double, 3, 3> M;
+    MeshExtraction::Vec3 first;
+    this->GetGeometry(M, first);
+    m_NumberOfNodesMovedBack =
+      MeshExtraction::RemoveSurfaceNetSelfIntersections(m_Net, initial, first, M, this->GetQuadSplit()); // 3b
+  }
+  this->UpdateProgress(0.85f);
+  this->MakeOutputMesh(); // 4
+  this->UpdateProgress(1.0f);
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(std::ostream & os, Indent indent) const
+{
+  Superclass::PrintSelf(os, indent);
+  os << indent << "IsoValue: " << m_IsoValue << '\n';
+  os << indent << "InsideIsAboveIsoValue: " << m_InsideIsAboveIsoValue << '\n';
+  os << indent << "ClassifyByLabel: " << m_ClassifyByLabel << '\n';
+  os << indent << "LabelValue: " << m_LabelValue << '\n';
+  os << indent << "Relaxation: " << m_Relaxation << '\n';
+  os << indent << "MaximumNumberOfIterations: " << m_MaximumNumberOfIterations << '\n';
+  os << indent << "ConvergenceThreshold: " << m_ConvergenceThreshold << '\n';
+  os << indent << "SmoothingWeight: " << m_SmoothingWeight << '\n';
+  os << indent << "ProjectionWeight: " << m_ProjectionWeight << '\n';
+  os << indent << "SequentialRelaxation: " << m_SequentialRelaxation << '\n';
+  os << indent << "GradientMethod: " << m_GradientMethod << '\n';
+  os << indent << "GradientSigma: " << m_GradientSigma << '\n';
+  os << indent << "Triangulation: " << m_Triangulation << '\n';
+  os << indent << "CellMargin: " << m_CellMargin << '\n';
+  os << indent << "PreventSelfIntersections: " << m_PreventSelfIntersections << '\n';
+  os << indent << "NumberOfIterations: " << m_NumberOfIterations << '\n';
+  os << indent << "LastMaximumRelocation: " << m_LastMaximumRelocation << '\n';
+  os << indent << "NumberOfNodes: " << m_NumberOfNodes << '\n';
+  os << indent << "NumberOfSplitCells: " << m_NumberOfSplitCells << '\n';
+  os << indent << "NumberOfNodesMovedBack: " << m_NumberOfNodesMovedBack << '\n';
+}
+} // namespace itk
+
+#endif

@@ -1,0 +1,653 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#include "itkMeshExtractionSurfaceNets.h"
+#include "itkSurfaceNetsImageToMeshFilterEnums.h"
+#include "itkMeshExtractionParallel.h"
+#include "itkMeshExtractionQualityAnalysis.h"
+
+#include "vnl/vnl_det.h"
+
+#include <algorithm>
+#include <atomic>
+#include <numeric>
+#include <ostream>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+namespace
+{
+inline unsigned int
+CornerIndex(const unsigned int offset[3])
+{
+  return offset[0] + 2 * offset[1] + 4 * offset[2];
+}
+} // namespace
+
+SurfaceNetsCellTable::SurfaceNetsCellTable()
+  : m_NumberOfSheets(256 * 64, 0)
+  , m_SheetOfEdge(256 * 64)
+{
+  for (unsigned int e = 0; e < 12; ++e)
+  {
+    const unsigned int a = e / 4;
+    unsigned int       offset[3] = { 0, 0, 0 };
+    offset[(a + 1) % 3] = e & 1;
+    offset[(a + 2) % 3] = (e >> 1) & 1;
+    edgeCorners[e][0] = static_cast<std::uint8_t>(CornerIndex(offset));
+    offset[a] = 1;
+    edgeCorners[e][1] = static_cast<std::uint8_t>(CornerIndex(offset));
+  }
+  auto edgeBetween = [this](unsigned int c0, unsigned int c1) {
+    for (unsigned int e = 0; e < 12; ++e)
+    {
+      if ((edgeCorners[e][0] == c0 && edgeCorners[e][1] == c1) || (edgeCorners[e][0] == c1 && edgeCorners[e][1] == c0))
+      {
+        return e;
+      }
+    }
+    return 12u;
+  };
+  for (unsigned int f = 0; f < 3; ++f)
+  {
+    for (unsigned int s = 0; s < 2; ++s)
+    {
+      const unsigned int u = (f + 1) % 3;
+      const unsigned int v = (f + 2) % 3;
+      const unsigned int cyclic[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+      for (unsigned int i = 0; i < 4; ++i)
+      {
+        unsigned int offset[3];
+        offset[f] = s;
+        offset[u] = cyclic[i][0];
+        offset[v] = cyclic[i][1];
+        faceCorners[2 * f + s][i] = static_cast<std::uint8_t>(CornerIndex(offset));
+      }
+      for (unsigned int i = 0; i < 4; ++i)
+      {
+        faceEdges[2 * f + s][i] =
+          static_cast<std::uint8_t>(edgeBetween(faceCorners[2 * f + s][i], faceCorners[2 * f + s][(i + 1) % 4]));
+      }
+    }
+  }
+  for (unsigned int configuration = 0; configuration < 256; ++configuration)
+  {
+    auto inside = [configuration](unsigned int corner) { return ((configuration >> corner) & 1u) != 0; };
+    bool crossing[12];
+    for (unsigned int e = 0; e < 12; ++e)
+    {
+      crossing[e] = inside(edgeCorners[e][0]) != inside(edgeCorners[e][1]);
+    }
+    ambiguousFaces[configuration] = 0;
+    for (unsigned int f = 0; f < 6; ++f)
+    {
+      unsigned int n = 0;
+      for (unsigned int i = 0; i < 4; ++i)
+      {
+        n += crossing[faceEdges[f][i]] ? 1 : 0;
+      }
+      ambiguousFaces[configuration] |= static_cast<std::uint8_t>(n == 4 ? (1u << f) : 0u);
+    }
+    for (unsigned int rules = 0; rules < 64; ++rules)
+    {
+      unsigned int parent[12];
+      std::iota(parent, parent + 12, 0u);
+      auto find = [&parent](unsigned int x) {
+        while (parent[x] != x)
+        {
+          x = parent[x];
+        }
+        return x;
+      };
+      auto join = [&](unsigned int a, unsigned int b) {
+        a = find(a);
+        b = find(b);
+        if (a != b)
+        {
+          parent[std::max(a, b)] = std::min(a, b);
+        }
+      };
+      for (unsigned int f = 0; f < 6; ++f)
+      {
+        unsigned int crossings[4];
+        unsigned int n = 0;
+        for (unsigned int i = 0; i < 4; ++i)
+        {
+          if (crossing[faceEdges[f][i]])
+          {
+            crossings[n++] = faceEdges[f][i];
+          }
+        }
+        if (n == 2)
+        {
+          join(crossings[0], crossings[1]);
+        }
+        else if (n == 4)
+        {
+          // Ambiguous face: cut off each inside corner (default) or each outside corner.
+          const bool cutInside = ((rules >> f) & 1u) == 0;
+          for (unsigned int i = 0; i < 4; ++i)
+          {
+            if (inside(faceCorners[f][i]) == cutInside)
+            {
+              join(faceEdges[f][(i + 3) % 4], faceEdges[f][i]);
+            }
+          }
+        }
+      }
+      std::int8_t sheetOfRoot[12];
+      std::fill(sheetOfRoot, sheetOfRoot + 12, static_cast<std::int8_t>(-1));
+      std::uint8_t sheets = 0;
+      auto &       sheetOfEdge = m_SheetOfEdge[configuration * 64 + rules];
+      for (unsigned int e = 0; e < 12; ++e)
+      {
+        sheetOfEdge[e] = -1;
+        if (!crossing[e])
+        {
+          continue;
+        }
+        const unsigned int root = find(e);
+        if (sheetOfRoot[root] < 0)
+        {
+          sheetOfRoot[root] = static_cast<std::int8_t>(sheets++);
+        }
+        sheetOfEdge[e] = sheetOfRoot[root];
+      }
+      m_NumberOfSheets[configuration * 64 + rules] = sheets;
+    }
+  }
+}
+
+const SurfaceNetsCellTable &
+SurfaceNetsCellTable::Get()
+{
+  static const SurfaceNetsCellTable table;
+  return table;
+}
+
+std::int64_t
+SurfaceNet::FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const
+{
+  if (y < -1 || y >= size[1] || z < -1 || z >= size[2])
+  {
+    return -1;
+  }
+  const std::int64_t row = (z + 1) * (size[1] + 1) + (y + 1);
+  const auto         begin = cells.begin() + rowStart[row];
+  const auto         end = cells.begin() + rowStart[row + 1];
+  const auto found = std::lower_bound(begin, end, x, [](const SurfaceCell & c, std::int64_t value) { return c.x < value; });
+  if (found == end || found->x != x)
+  {
+    return -1;
+  }
+  return found - cells.begin();
+}
+
+void
+BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
+{
+  const SurfaceNetsCellTable & table = SurfaceNetsCellTable::Get();
+  const std::size_t            numberOfCells = net.cells.size();
+
+  // Rows of cells for lookups.
+  const std::int64_t rows = (net.size[1] + 1) * (net.size[2] + 1);
+  net.rowStart.assign(static_cast<std::size_t>(rows) + 1, 0);
+  for (const auto & c : net.cells)
+  {
+    ++net.rowStart[static_cast<std::size_t>((c.z + 1) * (net.size[1] + 1) + (c.y + 1)) + 1];
+  }
+  std::partial_sum(net.rowStart.begin(), net.rowStart.end(), net.rowStart.begin());
+
+  // Ambiguous faces: where the face's two segments would belong to one sheet in
+  // both cells that share it (joining the same two nodes twice), cut off the
+  // face's other pair of corners instead; that splits the sheet in both cells
+  // and never joins sheets elsewhere, so one pass in cell order settles every face.
+  for (std::size_t i = 0; i < numberOfCells; ++i)
+  {
+    SurfaceCell &      c = net.cells[i];
+    const unsigned int ambiguous = table.ambiguousFaces[c.configuration];
+    for (unsigned int f = 0; f < 3; ++f)
+    {
+      const unsigned int upper = 2 * f + 1; // the face shared with the next cell along axis f
+      if (!((ambiguous >> upper) & 1u))
+      {
+        continue;
+      }
+      std::int64_t next[3] = { c.x, c.y, c.z };
+      ++next[f];
+      const std::int64_t j = net.FindCell(next[0], next[1], next[2]);
+      if (j < 0)
+      {
+        itkGenericExceptionMacro("SurfaceNets: internal error: an ambiguous face lacks its second cell.");
+      }
+      SurfaceCell & d = net.cells[j];
+      auto          oneSheet = [&table](const SurfaceCell & cell, unsigned int face) {
+        return table.SheetOfEdge(cell.configuration, cell.faceRules, table.faceEdges[face][0]) ==
+               table.SheetOfEdge(cell.configuration, cell.faceRules, table.faceEdges[face][2]);
+      };
+      if (oneSheet(c, upper) && oneSheet(d, upper - 1))
+      {
+        c.faceRules = static_cast<std::uint8_t>(c.faceRules ^ (1u << upper));
+        d.faceRules = static_cast<std::uint8_t>(d.faceRules ^ (1u << (upper - 1)));
+      }
+    }
+  }
+
+  // Nodes: one per sheet.
+  std::uint32_t numberOfNodes = 0;
+  net.numberOfSplitCells = 0;
+  for (auto & c : net.cells)
+  {
+    c.firstNode = numberOfNodes;
+    const unsigned int sheets = table.NumberOfSheets(c.configuration, c.faceRules);
+    numberOfNodes += sheets;
+    net.numberOfSplitCells += sheets > 1 ? 1 : 0;
+  }
+  net.positions.resize(numberOfNodes);
+  net.boxLower.resize(numberOfNodes);
+  net.boxUpper.resize(numberOfNodes);
+  net.nodeCell.resize(numberOfNodes);
+  ParallelForBlocks(
+    numberOfCells,
+    4096,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const SurfaceCell & c = net.cells[i];
+        const Vec3          corner = MakeVec3(c.x, c.y, c.z);
+        const unsigned int  sheets = table.NumberOfSheets(c.configuration, c.faceRules);
+        for (unsigned int s = 0; s < sheets; ++s)
+        {
+          const std::uint32_t node = c.firstNode + s;
+          net.nodeCell[node] = static_cast<std::uint32_t>(i);
+          Vec3 lower = MakeVec3(margin, margin, margin);
+          Vec3 upper = MakeVec3(1 - margin, 1 - margin, 1 - margin);
+          Vec3 start = MakeVec3(0.5, 0.5, 0.5);
+          if (sheets > 1)
+          {
+            // A cell with several sheets: each node sits at the centre of its sheet's
+            // edge midpoints and stays there, so that the sheets keep apart. (All
+            // edges of a sheet never lie on one face, so this point is at least 1/12
+            // voxel inside the cell.)
+            Vec3         sum = MakeVec3(0, 0, 0);
+            unsigned int count = 0;
+            for (unsigned int e = 0; e < 12; ++e)
+            {
+              if (table.SheetOfEdge(c.configuration, c.faceRules, e) != static_cast<std::int8_t>(s))
+              {
+                continue;
+              }
+              for (unsigned int d = 0; d < 3; ++d)
+              {
+                sum[d] += 0.5 * (((table.edgeCorners[e][0] >> d) & 1) + ((table.edgeCorners[e][1] >> d) & 1));
+              }
+              ++count;
+            }
+            start = sum * (1.0 / count);
+            lower = start;
+            upper = start;
+          }
+          for (unsigned int d = 0; d < 3; ++d)
+          {
+            start[d] = std::clamp(start[d], lower[d], upper[d]);
+          }
+          net.positions[node] = corner + start;
+          net.boxLower[node] = corner + lower;
+          net.boxUpper[node] = corner + upper;
+        }
+      }
+    },
+    numberOfWorkUnits);
+
+  // Quads: each crossing voxel edge is found once, from the cell that has it as
+  // its edge at offset (1, 1) on the two other axes (thesis 3.2.5).
+  constexpr std::size_t           BlockSize = 4096;
+  const std::size_t               numberOfBlocks = (numberOfCells + BlockSize - 1) / BlockSize;
+  std::vector<std::size_t>        quadsPerBlock(numberOfBlocks + 1, 0);
+  auto                            crosses = [&table](std::uint8_t configuration, unsigned int e) {
+    return table.SheetOfEdge(configuration, 0, e) >= 0;
+  };
+  ParallelForBlocks(
+    numberOfCells,
+    BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t block) {
+      std::size_t count = 0;
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        for (unsigned int a = 0; a < 3; ++a)
+        {
+          count += crosses(net.cells[i].configuration, 4 * a + 3) ? 1 : 0;
+        }
+      }
+      quadsPerBlock[block + 1] = count;
+    },
+    numberOfWorkUnits);
+  std::partial_sum(quadsPerBlock.begin(), quadsPerBlock.end(), quadsPerBlock.begin());
+  net.quads.resize(quadsPerBlock.back());
+  net.quadAxis.resize(quadsPerBlock.back());
+  std::atomic<bool> missingNeighbour{ false };
+  ParallelForBlocks(
+    numberOfCells,
+    BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t block) {
+      std::size_t q = quadsPerBlock[block];
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const SurfaceCell & c = net.cells[i];
+        for (unsigned int a = 0; a < 3; ++a)
+        {
+          const unsigned int e = 4 * a + 3;
+          if (!crosses(c.configuration, e))
+          {
+            continue;
+          }
+          const unsigned int b = (a + 1) % 3;
+          const unsigned int cAxis = (a + 2) % 3;
+          std::int64_t       base[3] = { c.x, c.y, c.z };
+          std::int64_t       pb[3] = { base[0], base[1], base[2] };
+          std::int64_t       pc[3] = { base[0], base[1], base[2] };
+          std::int64_t       pbc[3] = { base[0], base[1], base[2] };
+          ++pb[b];
+          ++pc[cAxis];
+          ++pbc[b];
+          ++pbc[cAxis];
+          const std::int64_t ib = net.FindCell(pb[0], pb[1], pb[2]);
+          const std::int64_t ic = net.FindCell(pc[0], pc[1], pc[2]);
+          const std::int64_t ibc = net.FindCell(pbc[0], pbc[1], pbc[2]);
+          if (ib < 0 || ic < 0 || ibc < 0)
+          {
+            missingNeighbour = true;
+            continue;
+          }
+          const SurfaceCell & cb = net.cells[ib];
+          const SurfaceCell & cc = net.cells[ic];
+          const SurfaceCell & cbc = net.cells[ibc];
+          const std::uint32_t n = c.firstNode + table.SheetOfEdge(c.configuration, c.faceRules, e);
+          const std::uint32_t nb = cb.firstNode + table.SheetOfEdge(cb.configuration, cb.faceRules, 4 * a + 2);
+          const std::uint32_t nc = cc.firstNode + table.SheetOfEdge(cc.configuration, cc.faceRules, 4 * a + 1);
+          const std::uint32_t nbc = cbc.firstNode + table.SheetOfEdge(cbc.configuration, cbc.faceRules, 4 * a + 0);
+          const bool lowInside = ((c.configuration >> table.edgeCorners[e][0]) & 1u) != 0;
+          if (lowInside)
+          {
+            net.quads[q] = { nbc, nc, n, nb }; // outward along +a
+            net.quadAxis[q] = static_cast<std::uint8_t>(a);
+          }
+          else
+          {
+            net.quads[q] = { nb, n, nc, nbc }; // outward along -a
+            net.quadAxis[q] = static_cast<std::uint8_t>(a + 4);
+          }
+          ++q;
+        }
+      }
+    },
+    numberOfWorkUnits);
+  if (missingNeighbour)
+  {
+    itkGenericExceptionMacro("SurfaceNets: internal error: a crossing voxel edge lacks one of its four surface cells.");
+  }
+
+  // Links: the edges of the quads.
+  std::vector<std::uint32_t> degree(numberOfNodes + 1, 0);
+  for (const auto & quad : net.quads)
+  {
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      degree[quad[k] + 1] += 2;
+    }
+  }
+  std::partial_sum(degree.begin(), degree.end(), degree.begin());
+  std::vector<std::uint32_t> all(degree.back());
+  std::vector<std::uint32_t> cursor(degree.begin(), degree.end() - 1);
+  for (const auto & quad : net.quads)
+  {
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      all[cursor[quad[k]]++] = quad[(k + 1) % 4];
+      all[cursor[quad[k]]++] = quad[(k + 3) % 4];
+    }
+  }
+  net.neighborStart.assign(numberOfNodes + 1, 0);
+  net.neighbors.clear();
+  net.neighbors.reserve(all.size() / 2 + numberOfNodes);
+  for (std::uint32_t v = 0; v < numberOfNodes; ++v)
+  {
+    auto first = all.begin() + degree[v];
+    auto last = all.begin() + degree[v + 1];
+    std::sort(first, last);
+    last = std::unique(first, last);
+    net.neighbors.insert(net.neighbors.end(), first, last);
+    net.neighborStart[v + 1] = static_cast<std::uint32_t>(net.neighbors.size());
+  }
+}
+
+void
+MakeSurfaceNetFaces(const SurfaceNet &                          net,
+                    const Vec3 &                                origin,
+                    const Matrix<double, 3, 3> &                indexToPhysical,
+                    QuadSplit                                   split,
+                    std::vector<Vec3> &                         points,
+                    std::vector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                              polygonSize)
+{
+  points.resize(net.positions.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    Vec3 p = origin;
+    for (unsigned int r = 0; r < 3; ++r)
+    {
+      for (unsigned int c = 0; c < 3; ++c)
+      {
+        p[r] += indexToPhysical[r][c] * net.positions[i][c];
+      }
+    }
+    points[i] = p;
+  }
+  // A reflecting direction matrix turns counter-clockwise into clockwise.
+  const bool reflect = vnl_det(indexToPhysical.GetVnlMatrix()) < 0.0;
+  polygons.clear();
+  if (split == QuadSplit::KeepQuads)
+  {
+    polygonSize = 4;
+    polygons.reserve(net.quads.size());
+    for (const auto & q : net.quads)
+    {
+      polygons.push_back(reflect ? std::array<std::uint32_t, 4>{ { q[3], q[2], q[1], q[0] } } : q);
+    }
+    return;
+  }
+  polygonSize = 3;
+  polygons.resize(2 * net.quads.size());
+  ParallelForBlocks(net.quads.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const auto &       q = net.quads[i];
+      const unsigned int axis = net.quadAxis[i] & 3u;
+      const double       sign = (net.quadAxis[i] & 4u) ? -1.0 : 1.0;
+      // Orientation in index space, along the quad's voxel edge.
+      auto facing = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        return sign * TriangleNormal(net.positions[a], net.positions[b], net.positions[c])[axis];
+      };
+      const double along02 = std::min(facing(q[0], q[1], q[2]), facing(q[0], q[2], q[3]));
+      const double along13 = std::min(facing(q[0], q[1], q[3]), facing(q[1], q[2], q[3]));
+      bool         use02;
+      if (split == QuadSplit::ShortestDiagonal)
+      {
+        use02 = SquaredNorm(points[q[0]] - points[q[2]]) <= SquaredNorm(points[q[1]] - points[q[3]]);
+      }
+      else
+      {
+        auto smallestAngle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+          return MeasureTriangle(points[a], points[b], points[c]).minAngle;
+        };
+        use02 = std::min(smallestAngle(q[0], q[1], q[2]), smallestAngle(q[0], q[2], q[3])) >=
+                std::min(smallestAngle(q[0], q[1], q[3]), smallestAngle(q[1], q[2], q[3]));
+      }
+      if (use02 && !(along02 > 0.0) && along13 > along02)
+      {
+        use02 = false;
+      }
+      else if (!use02 && !(along13 > 0.0) && along02 > along13)
+      {
+        use02 = true;
+      }
+      std::array<std::uint32_t, 4> t0;
+      std::array<std::uint32_t, 4> t1;
+      if (use02)
+      {
+        t0 = { { q[0], q[1], q[2], 0 } };
+        t1 = { { q[0], q[2], q[3], 0 } };
+      }
+      else
+      {
+        t0 = { { q[0], q[1], q[3], 0 } };
+        t1 = { { q[1], q[2], q[3], 0 } };
+      }
+      if (reflect)
+      {
+        std::swap(t0[1], t0[2]);
+        std::swap(t1[1], t1[2]);
+      }
+      polygons[2 * i] = t0;
+      polygons[2 * i + 1] = t1;
+    }
+  });
+}
+
+std::size_t
+RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
+                                  const std::vector<Vec3> &    initial,
+                                  const Vec3 &                 origin,
+                                  const Matrix<double, 3, 3> & indexToPhysical,
+                                  QuadSplit                    split)
+{
+  std::vector<bool>                         moved(net.positions.size(), false);
+  std::vector<unsigned int>                 pulls(net.positions.size(), 0);
+  std::vector<Vec3>                         points;
+  std::vector<std::array<std::uint32_t, 4>> polygons;
+  unsigned int                              polygonSize = 3;
+  IndexedTriangleMesh                       mesh;
+  constexpr unsigned int                    HalvingsBeforeReset = 4;
+  constexpr unsigned int                    MaximumRounds = 64;
+  for (unsigned int round = 0;; ++round)
+  {
+    // Intersection is invariant under the affine index-to-physical map: test the
+    // faces as they will be output, on the index-space positions.
+    MakeSurfaceNetFaces(net, origin, indexToPhysical, split == QuadSplit::KeepQuads ? QuadSplit::ShortestDiagonal : split,
+                        points, polygons, polygonSize);
+    mesh.points = net.positions;
+    mesh.triangles.resize(polygons.size());
+    for (std::size_t f = 0; f < polygons.size(); ++f)
+    {
+      mesh.triangles[f] = { polygons[f][0], polygons[f][1], polygons[f][2] };
+    }
+    const auto pairs = FindSelfIntersections(mesh);
+    if (pairs.empty())
+    {
+      break;
+    }
+    if (round == MaximumRounds)
+    {
+      // Not expected: fall back to the unrelaxed net, which is intersection-free.
+      for (std::size_t i = 0; i < net.positions.size(); ++i)
+      {
+        moved[i] = moved[i] || net.positions[i] != initial[i];
+      }
+      net.positions = initial;
+      break;
+    }
+    std::vector<std::uint32_t> nodes;
+    for (const auto & p : pairs)
+    {
+      for (std::uint32_t v : mesh.triangles[p.first])
+      {
+        nodes.push_back(v);
+      }
+      for (std::uint32_t v : mesh.triangles[p.second])
+      {
+        nodes.push_back(v);
+      }
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (std::uint32_t v : nodes)
+    {
+      moved[v] = true;
+      if (++pulls[v] > HalvingsBeforeReset)
+      {
+        net.positions[v] = initial[v];
+      }
+      else
+      {
+        net.positions[v] = initial[v] + (net.positions[v] - initial[v]) * 0.5;
+      }
+    }
+  }
+  return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), true));
+}
+
+} // namespace MeshExtraction
+
+std::ostream &
+operator<<(std::ostream & out, SurfaceNetsImageToMeshFilterEnums::Relaxation value)
+{
+  switch (value)
+  {
+    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Automatic:
+      return out << "Automatic";
+    case SurfaceNetsImageToMeshFilterEnums::Relaxation::None:
+      return out << "None";
+    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Averaging:
+      return out << "Averaging";
+    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Gradient:
+      return out << "Gradient";
+    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Combined:
+      return out << "Combined";
+  }
+  return out << "INVALID Relaxation";
+}
+
+std::ostream &
+operator<<(std::ostream & out, SurfaceNetsImageToMeshFilterEnums::Triangulation value)
+{
+  switch (value)
+  {
+    case SurfaceNetsImageToMeshFilterEnums::Triangulation::ShortestDiagonal:
+      return out << "ShortestDiagonal";
+    case SurfaceNetsImageToMeshFilterEnums::Triangulation::Delaunay:
+      return out << "Delaunay";
+    case SurfaceNetsImageToMeshFilterEnums::Triangulation::Quadrilaterals:
+      return out << "Quadrilaterals";
+  }
+  return out << "INVALID Triangulation";
+}
+
+std::ostream &
+operator<<(std::ostream & out, SurfaceNetsImageToMeshFilterEnums::Gradient value)
+{
+  switch (value)
+  {
+    case SurfaceNetsImageToMeshFilterEnums::Gradient::CentralDifference:
+      return out << "CentralDifference";
+    case SurfaceNetsImageToMeshFilterEnums::Gradient::GaussianDerivative:
+      return out << "GaussianDerivative";
+  }
+  return out << "INVALID Gradient";
+}
+} // namespace itk

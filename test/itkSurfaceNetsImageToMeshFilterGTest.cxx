@@ -1,0 +1,602 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#include "itkSurfaceNetsImageToMeshFilter.h"
+#include "itkBinaryMask3DMeshSource.h"
+#include "itkMeshExtractionPhantoms.h"
+#include "itkMeshExtractionTestHelpers.h"
+#include "itkMeshSurfaceDistanceCalculator.h"
+#include "itkTriangleMeshQualityCalculator.h"
+
+#include "gtest/gtest.h"
+
+#include <random>
+#include <sstream>
+
+using namespace MeshExtractionTest;
+namespace ME = itk::MeshExtraction;
+
+namespace
+{
+using FloatImage = itk::Image<float, 3>;
+using MaskImage = itk::Image<unsigned char, 3>;
+using Enums = itk::SurfaceNetsImageToMeshFilterEnums;
+
+template <typename TImage>
+typename TImage::Pointer
+MakeImage(unsigned int nx, unsigned int ny, unsigned int nz, typename TImage::PixelType value = 0)
+{
+  auto                       image = TImage::New();
+  typename TImage::SizeType  size = { { nx, ny, nz } };
+  image->SetRegions(size);
+  image->Allocate();
+  image->FillBuffer(value);
+  return image;
+}
+
+template <typename TMesh = QEMeshType>
+ME::TriangleMeshQualityReport
+Measure(const TMesh * mesh)
+{
+  auto calculator = itk::TriangleMeshQualityCalculator<TMesh>::New();
+  calculator->SetMesh(mesh);
+  calculator->Compute();
+  return calculator->GetReport();
+}
+
+ME::MeshSurfaceDistanceReport
+Distance(const QEMeshType * mesh, const itk::ImplicitSurfaceFunction * surface)
+{
+  auto calculator = itk::MeshSurfaceDistanceCalculator<QEMeshType>::New();
+  calculator->SetMesh(mesh);
+  calculator->SetReferenceSurface(surface);
+  calculator->SetSamplingLevel(1);
+  calculator->Compute();
+  return calculator->GetReport();
+}
+
+std::string
+Text(const ME::TriangleMeshQualityReport & r)
+{
+  std::ostringstream os;
+  r.Print(os);
+  return os.str();
+}
+
+/** Number of 6-connected components of the voxels equal to 1. */
+std::size_t
+CountComponents(const MaskImage * mask)
+{
+  const auto         size = mask->GetBufferedRegion().GetSize();
+  const long         n[3] = { static_cast<long>(size[0]), static_cast<long>(size[1]), static_cast<long>(size[2]) };
+  std::vector<int>   seen(n[0] * n[1] * n[2], 0);
+  const auto *       buffer = mask->GetBufferPointer();
+  std::size_t        components = 0;
+  std::vector<long>  stack;
+  for (long start = 0; start < n[0] * n[1] * n[2]; ++start)
+  {
+    if (buffer[start] != 1 || seen[start])
+    {
+      continue;
+    }
+    ++components;
+    stack.push_back(start);
+    seen[start] = 1;
+    while (!stack.empty())
+    {
+      const long v = stack.back();
+      stack.pop_back();
+      const long x = v % n[0];
+      const long y = (v / n[0]) % n[1];
+      const long z = v / (n[0] * n[1]);
+      const long neighbours[6][3] = { { x - 1, y, z }, { x + 1, y, z }, { x, y - 1, z },
+                                      { x, y + 1, z }, { x, y, z - 1 }, { x, y, z + 1 } };
+      for (const auto & q : neighbours)
+      {
+        if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n[0] || q[1] >= n[1] || q[2] >= n[2])
+        {
+          continue;
+        }
+        const long w = (q[2] * n[1] + q[1]) * n[0] + q[0];
+        if (buffer[w] == 1 && !seen[w])
+        {
+          seen[w] = 1;
+          stack.push_back(w);
+        }
+      }
+    }
+  }
+  return components;
+}
+
+template <typename TImage, typename TMesh = QEMeshType>
+typename TMesh::Pointer
+Extract(const TImage * image, double iso, bool insideAbove, Enums::Relaxation relaxation = Enums::Relaxation::Automatic)
+{
+  auto filter = itk::SurfaceNetsImageToMeshFilter<TImage, TMesh>::New();
+  filter->SetInput(image);
+  filter->SetIsoValue(iso);
+  filter->SetInsideIsAboveIsoValue(insideAbove);
+  filter->SetRelaxation(relaxation);
+  filter->Update();
+  return filter->GetOutput();
+}
+
+QEMeshType::Pointer
+ExtractLabels(const MaskImage * mask, Enums::Relaxation relaxation)
+{
+  auto filter = itk::SurfaceNetsImageToMeshFilter<MaskImage>::New();
+  filter->SetInput(mask);
+  filter->SetClassifyByLabel(true);
+  filter->SetLabelValue(1);
+  filter->SetRelaxation(relaxation);
+  filter->Update();
+  return filter->GetOutput();
+}
+
+/** A phantom's distance map (inside negative) and its exact surface. */
+struct Phantom
+{
+  FloatImage::Pointer                   image;
+  itk::ImplicitSurfaceFunction::Pointer surface;
+  ME::PhantomGrid                       grid;
+};
+
+Phantom
+MakePhantom(ME::PhantomShape shape, const ME::PhantomGrid & grid)
+{
+  Phantom p;
+  p.grid = grid;
+  auto source = ME::MakePhantomImageSource<FloatImage>(shape, grid);
+  source->Update();
+  p.image = source->GetOutput();
+  p.surface = ME::MakePhantomSurface(shape, grid);
+  return p;
+}
+
+Phantom
+MakePhantom(ME::PhantomShape shape)
+{
+  return MakePhantom(shape, ME::DefaultPhantomGrid(shape));
+}
+
+/** Marching cubes (ITK's BinaryMask3DMeshSource) on the phantom's mask. */
+QEMeshType::Pointer
+MarchingCubes(const Phantom & p)
+{
+  auto mask = MakeImage<MaskImage>(1, 1, 1);
+  mask->SetRegions(p.image->GetBufferedRegion());
+  mask->CopyInformation(p.image);
+  mask->Allocate();
+  const std::size_t n = p.image->GetBufferedRegion().GetNumberOfPixels();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    mask->GetBufferPointer()[i] = p.image->GetBufferPointer()[i] <= 0.0f ? 1 : 0;
+  }
+  auto mc = itk::BinaryMask3DMeshSource<MaskImage, QEMeshType>::New();
+  mc->SetInput(mask);
+  mc->SetObjectValue(1);
+  mc->Update();
+  return mc->GetOutput();
+}
+} // namespace
+
+TEST(SurfaceNetsImageToMeshFilter, EveryCellConfigurationGivesAValidClosedSurfacePerComponent)
+{
+  for (unsigned int configuration = 1; configuration < 256; ++configuration)
+  {
+    for (unsigned int border = 0; border < 2; ++border)
+    {
+      // The 2x2x2 block inside a margin of background, or filling the whole image.
+      const unsigned int n = border ? 2 : 4;
+      const unsigned int o = border ? 0 : 1;
+      auto               mask = MakeImage<MaskImage>(n, n, n);
+      auto               grey = MakeImage<FloatImage>(n, n, n);
+      for (unsigned int k = 0; k < 8; ++k)
+      {
+        if ((configuration >> k) & 1u)
+        {
+          MaskImage::IndexType index = { { o + (k & 1), o + ((k >> 1) & 1), o + ((k >> 2) & 1) } };
+          mask->SetPixel(index, 1);
+          grey->SetPixel(index, 1.0f);
+        }
+      }
+      const auto expectedChi = static_cast<std::int64_t>(2 * CountComponents(mask));
+      for (auto relaxation : { Enums::Relaxation::None, Enums::Relaxation::Averaging })
+      {
+        const auto r = Measure(ExtractLabels(mask, relaxation).GetPointer());
+        ASSERT_TRUE(r.IsValidClosedSurface()) << "configuration " << configuration << " border " << border;
+        ASSERT_EQ(r.eulerCharacteristic, expectedChi) << "configuration " << configuration;
+      }
+      if (configuration == 255 && border)
+      {
+        // A constant image has no iso-surface (the label image above is fine).
+        EXPECT_THROW(Extract(grey.GetPointer(), 0.5, true), itk::ExceptionObject);
+        continue;
+      }
+      const auto r = Measure(Extract(grey.GetPointer(), 0.5, true, Enums::Relaxation::Combined).GetPointer());
+      ASSERT_TRUE(r.IsValidClosedSurface()) << "greyscale configuration " << configuration << " border " << border
+                                            << '\n'
+                                            << Text(r);
+      ASSERT_EQ(r.eulerCharacteristic, expectedChi) << "greyscale configuration " << configuration;
+    }
+  }
+}
+
+TEST(SurfaceNetsImageToMeshFilter, RandomVolumesGiveValidClosedSurfaces)
+{
+  std::mt19937                           rng(2024);
+  std::uniform_real_distribution<float>  value(0.0f, 1.0f);
+  std::uniform_real_distribution<double> density(0.2, 0.8);
+  for (int trial = 0; trial < 250; ++trial)
+  {
+    SCOPED_TRACE(trial);
+    const unsigned int n = 5 + trial % 3;
+    auto               grey = MakeImage<FloatImage>(n, n, n);
+    auto               mask = MakeImage<MaskImage>(n, n, n);
+    const double       d = density(rng);
+    for (std::size_t i = 0; i < grey->GetBufferedRegion().GetNumberOfPixels(); ++i)
+    {
+      const float v = value(rng);
+      grey->GetBufferPointer()[i] = v;
+      mask->GetBufferPointer()[i] = v < d ? 1 : 0;
+    }
+    if (CountComponents(mask) == 0)
+    {
+      continue;
+    }
+    const auto sna = Measure(ExtractLabels(mask, Enums::Relaxation::Averaging).GetPointer());
+    ASSERT_TRUE(sna.IsValidClosedSurface()) << "binary trial " << trial << '\n' << Text(sna);
+    const auto snert = Measure(Extract(grey.GetPointer(), d, false).GetPointer());
+    ASSERT_TRUE(snert.IsValidClosedSurface()) << "greyscale trial " << trial << '\n' << Text(snert);
+    ASSERT_EQ(snert.eulerCharacteristic, sna.eulerCharacteristic) << "greyscale trial " << trial;
+  }
+}
+
+TEST(SurfaceNetsImageToMeshFilter, SnertSphereHasSlicerQualityAtAFiftiethOfAVoxel)
+{
+  // Thesis Table 3.1, sphere distance map: radius 19.2 voxels (> 15).
+  const Phantom p = MakePhantom(ME::PhantomShape::Sphere);
+  auto          snert = Extract(p.image.GetPointer(), 0.0, false);
+  const auto    q = Measure(snert.GetPointer());
+  EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+  EXPECT_EQ(q.eulerCharacteristic, 2);
+  EXPECT_GE(q.qAngle.mean, 0.60);
+  EXPECT_GE(q.qArea.mean, 0.90);
+  EXPECT_EQ(q.fractionQAngleBelow03, 0.0);
+  const auto d = Distance(snert.GetPointer(), p.surface);
+  EXPECT_LE(d.vertices.mean, 0.02); // voxels (1 mm spacing)
+  EXPECT_LE(d.faceCentroids.mean, 0.03);
+
+  // SNA ignores the greyscale values: it shrinks the sphere and is less accurate.
+  auto       sna = Extract(p.image.GetPointer(), 0.0, false, Enums::Relaxation::Averaging);
+  const auto ds = Distance(sna.GetPointer(), p.surface);
+  EXPECT_GT(ds.vertices.mean, 3 * d.vertices.mean);
+  EXPECT_LT(ds.vertices.signedMean, -0.05); // inside the sphere
+  EXPECT_TRUE(Measure(sna.GetPointer()).IsValidClosedSurface());
+
+  // (Greyscale marching cubes is compared in the VTK test suite.)
+}
+
+TEST(SurfaceNetsImageToMeshFilter, SnertPlaneIsExactAndAsFlatAsMarchingCubes)
+{
+  const Phantom p = MakePhantom(ME::PhantomShape::Plane);
+  auto          mesh = Extract(p.image.GetPointer(), 0.0, false);
+  auto          calculator = itk::TriangleMeshQualityCalculator<QEMeshType>::New();
+  calculator->SetMesh(mesh);
+  calculator->Compute();
+  EXPECT_TRUE(calculator->GetReport().IsValidClosedSurface());
+  // Away from the image border (where the half-space is closed), nodes lie on the
+  // plane: the distance map is linear, so trilinear interpolation is exact.
+  const auto & smoothness = calculator->GetVertexSmoothness();
+  double       largestDistance = 0.0;
+  double       sumSmoothness = 0.0;
+  std::size_t  interior = 0;
+  std::size_t  index = 0;
+  for (auto it = mesh->GetPoints()->Begin(); it != mesh->GetPoints()->End(); ++it, ++index)
+  {
+    const auto & point = it.Value();
+    bool         nearBorder = false;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      nearBorder = nearBorder || point[d] < 2.0 || point[d] > 61.0;
+    }
+    if (nearBorder)
+    {
+      continue;
+    }
+    itk::ImplicitSurfaceFunction::InputType x;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      x[d] = point[d];
+    }
+    largestDistance = std::max(largestDistance, std::abs(p.surface->Evaluate(x)));
+    sumSmoothness += smoothness[index];
+    ++interior;
+  }
+  ASSERT_GT(interior, 1000u);
+  EXPECT_LT(largestDistance, 1e-4);
+  const double meanSmoothness = sumSmoothness / interior;
+  EXPECT_LT(meanSmoothness, 1e-3);
+  // Marching cubes on the binary mask (ITK's BinaryMask3DMeshSource) terraces the tilted plane.
+  EXPECT_LT(meanSmoothness, Measure(MarchingCubes(p).GetPointer()).meanSmoothness);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, OverlappingSpheresTorusAndEllipsoidKeepTheirTopology)
+{
+  for (auto shape : { ME::PhantomShape::TwoSpheres, ME::PhantomShape::Torus, ME::PhantomShape::Ellipsoid,
+                      ME::PhantomShape::IndentedSphere })
+  {
+    SCOPED_TRACE(ME::PhantomShapeName(shape));
+    const Phantom p = MakePhantom(shape);
+    auto          mesh = Extract(p.image.GetPointer(), 0.0, false);
+    const auto    q = Measure(mesh.GetPointer());
+    EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+    EXPECT_EQ(q.connectedComponents, 1);
+    EXPECT_EQ(q.eulerCharacteristic, shape == ME::PhantomShape::Torus ? 0 : 2);
+    EXPECT_GE(q.qAngle.mean, 0.58);
+    const auto d = Distance(mesh.GetPointer(), p.surface);
+    EXPECT_LE(d.vertices.mean, 0.025);
+  }
+}
+
+TEST(SurfaceNetsImageToMeshFilter, ThinPlateAndNarrowCleftRetainTheirDetail)
+{
+  for (auto shape : { ME::PhantomShape::ThinPlate, ME::PhantomShape::NarrowCleft })
+  {
+    SCOPED_TRACE(ME::PhantomShapeName(shape));
+    const Phantom p = MakePhantom(shape);
+    auto          mesh = Extract(p.image.GetPointer(), 0.0, false);
+    const auto    q = Measure(mesh.GetPointer());
+    EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+    EXPECT_EQ(q.connectedComponents, 1);
+    EXPECT_EQ(q.eulerCharacteristic, 2);
+    // A bridged cleft or a plate with holes would leave parts of the exact surface
+    // far from the mesh: the symmetric Hausdorff distance stays below a voxel.
+    const auto d = Distance(mesh.GetPointer(), p.surface);
+    EXPECT_LT(d.hausdorff, 1.0);
+    EXPECT_LE(d.vertices.mean, 0.03);
+  }
+}
+
+TEST(SurfaceNetsImageToMeshFilter, AnisotropicRotatedGridGivesTheSamePhysicalSurface)
+{
+  ME::PhantomGrid grid = ME::DefaultPhantomGrid(ME::PhantomShape::Sphere);
+  grid.size[0] = 80;
+  grid.size[1] = 64;
+  grid.size[2] = 44;
+  grid.spacing[0] = 0.8;
+  grid.spacing[1] = 1.0;
+  grid.spacing[2] = 1.45;
+  const double angle = 0.5;
+  grid.direction.SetIdentity();
+  grid.direction[0][0] = std::cos(angle);
+  grid.direction[0][1] = -std::sin(angle);
+  grid.direction[1][0] = std::sin(angle);
+  grid.direction[1][1] = std::cos(angle);
+  grid.origin[0] = -20.0;
+  grid.origin[1] = 7.0;
+  grid.origin[2] = 3.0;
+  const Phantom anisotropic = MakePhantom(ME::PhantomShape::Sphere, grid);
+  auto          mesh = Extract(anisotropic.image.GetPointer(), 0.0, false);
+  const auto    q = Measure(mesh.GetPointer());
+  EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+  const auto d = Distance(mesh.GetPointer(), anisotropic.surface);
+  EXPECT_LE(d.vertices.mean, 0.03);  // mm
+  EXPECT_LT(d.hausdorff, 0.5);       // mm
+
+  // The same sphere (same physical radius) on the default isotropic grid.
+  const Phantom isotropic = MakePhantom(ME::PhantomShape::Sphere);
+  auto          sphere = itk::SphereImplicitSurface::New();
+  const auto *  s1 = dynamic_cast<const itk::SphereImplicitSurface *>(anisotropic.surface.GetPointer());
+  const auto *  s2 = dynamic_cast<const itk::SphereImplicitSurface *>(isotropic.surface.GetPointer());
+  ASSERT_NE(s1, nullptr);
+  ASSERT_NE(s2, nullptr);
+  const double radius = s1->GetRadius();
+  EXPECT_NEAR(q.enclosedVolume, 4.0 / 3.0 * itk::Math::pi * radius * radius * radius, 0.01 * q.enclosedVolume);
+  const auto qi = Measure(Extract(isotropic.image.GetPointer(), 0.0, false).GetPointer());
+  const double ri = s2->GetRadius();
+  EXPECT_NEAR(qi.enclosedVolume / (ri * ri * ri), q.enclosedVolume / (radius * radius * radius), 0.01);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, MeshIsIdenticalForOneAndManyThreads)
+{
+  const Phantom p = MakePhantom(ME::PhantomShape::TwoSpheres);
+  auto          run = [&p](unsigned int workUnits) {
+    auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage, MeshType>::New();
+    filter->SetInput(p.image);
+    filter->SetInsideIsAboveIsoValue(false);
+    filter->SetNumberOfWorkUnits(workUnits);
+    filter->Update();
+    return ME::MakeIndexedTriangleMesh(*filter->GetOutput());
+  };
+  const auto one = run(1);
+  const auto many = run(7);
+  ASSERT_EQ(one.points.size(), many.points.size());
+  EXPECT_EQ(one.triangles, many.triangles);
+  for (std::size_t i = 0; i < one.points.size(); ++i)
+  {
+    ASSERT_EQ(one.points[i], many.points[i]) << "point " << i;
+  }
+}
+
+TEST(SurfaceNetsImageToMeshFilter, EveryScalarPixelTypeGivesTheSurface)
+{
+  // A blurred-step sphere (inside 100, outside 0), iso-value 50, in five pixel types.
+  ME::PhantomGrid grid;
+  grid.size.Fill(40);
+  auto surface = ME::MakePhantomSurface(ME::PhantomShape::Sphere, grid);
+  auto check = [&surface](auto image) {
+    auto mesh = Extract(image.GetPointer(), 50.0, true);
+    EXPECT_TRUE(Measure(mesh.GetPointer()).IsValidClosedSurface());
+    EXPECT_LE(Distance(mesh.GetPointer(), surface).vertices.mean, 0.05);
+  };
+  ME::PhantomImageParameters step;
+  step.mode = itk::MeshExtractionEnums::PhantomImage::BlurredStep;
+  step.insideValue = 100;
+  step.outsideValue = 0;
+  step.edgeWidth = 1.0;
+  auto render = [&](auto * typeTag) {
+    using ImageType = std::remove_pointer_t<decltype(typeTag)>;
+    auto source = itk::ImplicitSurfaceImageSource<ImageType>::New();
+    source->SetSurface(surface);
+    source->SetSize(grid.size);
+    source->SetImageMode(step.mode);
+    source->SetInsideValue(100);
+    source->SetOutsideValue(0);
+    source->SetEdgeWidth(1.0);
+    source->Update();
+    return typename ImageType::Pointer(source->GetOutput());
+  };
+  check(render(static_cast<itk::Image<unsigned char, 3> *>(nullptr)));
+  check(render(static_cast<itk::Image<short, 3> *>(nullptr)));
+  check(render(static_cast<itk::Image<unsigned short, 3> *>(nullptr)));
+  check(render(static_cast<itk::Image<float, 3> *>(nullptr)));
+  check(render(static_cast<itk::Image<double, 3> *>(nullptr)));
+}
+
+TEST(SurfaceNetsImageToMeshFilter, MeshOutputTriangulationsAndQuadsAgree)
+{
+  const Phantom p = MakePhantom(ME::PhantomShape::Ellipsoid);
+  auto          filter = itk::SurfaceNetsImageToMeshFilter<FloatImage, MeshType>::New();
+  filter->SetInput(p.image);
+  filter->SetInsideIsAboveIsoValue(false);
+  filter->Update();
+  const auto shortest = Measure<MeshType>(filter->GetOutput());
+  EXPECT_TRUE(shortest.IsValidClosedSurface());
+  filter->SetTriangulation(Enums::Triangulation::Delaunay);
+  filter->Update();
+  const auto delaunay = Measure<MeshType>(filter->GetOutput());
+  EXPECT_TRUE(delaunay.IsValidClosedSurface());
+  // Max-min per quad: the smallest angle of the mesh can only grow.
+  EXPECT_GE(delaunay.minimumAngle.minimum, shortest.minimumAngle.minimum - 1e-9);
+  filter->SetTriangulation(Enums::Triangulation::Quadrilaterals);
+  filter->Update();
+  const auto quads = Measure<MeshType>(filter->GetOutput());
+  EXPECT_EQ(quads.numberOfSplitQuads, shortest.numberOfTriangles / 2);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), shortest.numberOfTriangles / 2);
+  EXPECT_EQ(quads.eulerCharacteristic, 2);
+  // The QuadEdgeMesh output holds the same quads as faces.
+  auto qe = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+  qe->SetInput(p.image);
+  qe->SetInsideIsAboveIsoValue(false);
+  qe->SetTriangulation(Enums::Triangulation::Quadrilaterals);
+  qe->Update();
+  EXPECT_EQ(qe->GetOutput()->GetNumberOfFaces(), shortest.numberOfTriangles / 2);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, SegmentationRelaxedTowardTheGreyscaleIsoSurface)
+{
+  // The net from a mask of the sphere, relaxed toward the distance map's iso-surface,
+  // lands where the greyscale-only SNERT does.
+  const Phantom p = MakePhantom(ME::PhantomShape::Sphere);
+  auto          mask = MakeImage<MaskImage>(1, 1, 1);
+  mask->SetRegions(p.image->GetBufferedRegion());
+  mask->CopyInformation(p.image);
+  mask->Allocate();
+  for (std::size_t i = 0; i < p.image->GetBufferedRegion().GetNumberOfPixels(); ++i)
+  {
+    mask->GetBufferPointer()[i] = p.image->GetBufferPointer()[i] <= 0.0f ? 1 : 0;
+  }
+  auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+  filter->SetInput(p.image);
+  filter->SetLabelImage(mask);
+  filter->SetInsideIsAboveIsoValue(false);
+  filter->Update();
+  EXPECT_TRUE(Measure(filter->GetOutput()).IsValidClosedSurface());
+  EXPECT_LE(Distance(filter->GetOutput(), p.surface).vertices.mean, 0.02);
+  // A label image of another size is refused.
+  filter->SetLabelImage(MakeImage<MaskImage>(8, 8, 8, 1));
+  EXPECT_THROW(filter->Update(), itk::ExceptionObject);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, GaussianDerivativeGradientsHandleNoise)
+{
+  ME::PhantomGrid grid;
+  grid.size.Fill(48);
+  ME::PhantomImageParameters parameters = ME::DefaultPhantomImageParameters(ME::PhantomShape::Chapter4Sphere);
+  parameters.noiseStandardDeviation = 2.0;
+  auto source = ME::MakePhantomImageSource<FloatImage>(ME::PhantomShape::Sphere, grid, parameters);
+  source->Update();
+  auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+  filter->SetInput(source->GetOutput());
+  filter->SetIsoValue(50.0);
+  filter->SetGradientMethod(Enums::Gradient::GaussianDerivative);
+  filter->SetGradientSigma(1.0);
+  filter->Update();
+  const auto q = Measure(filter->GetOutput());
+  EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+  EXPECT_EQ(q.connectedComponents, 1);
+  EXPECT_LE(Distance(filter->GetOutput(), ME::MakePhantomSurface(ME::PhantomShape::Sphere, grid)).vertices.mean, 0.15);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, BadInputRaisesClearExceptions)
+{
+  auto expectMessage = [](auto & filter, const std::string & words) {
+    try
+    {
+      filter->Update();
+      FAIL() << "expected an exception mentioning '" << words << "'";
+    }
+    catch (const itk::ExceptionObject & e)
+    {
+      EXPECT_NE(std::string(e.GetDescription()).find(words), std::string::npos) << e.GetDescription();
+    }
+  };
+  auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+  EXPECT_THROW(filter->Update(), itk::ExceptionObject); // no input
+
+  auto constant = MakeImage<FloatImage>(6, 6, 6, 3.0f);
+  filter->SetInput(constant);
+  expectMessage(filter, "constant");
+
+  auto image = MakeImage<FloatImage>(6, 6, 6, 0.0f);
+  image->SetPixel({ { 2, 2, 2 } }, 10.0f);
+  filter->SetInput(image);
+  filter->SetIsoValue(20.0);
+  expectMessage(filter, "No voxel is inside");
+
+  filter->SetIsoValue(5.0);
+  image->SetPixel({ { 4, 1, 3 } }, std::numeric_limits<float>::quiet_NaN());
+  image->Modified();
+  expectMessage(filter, "NaN voxel at index [4, 1, 3]");
+
+  image->SetPixel({ { 4, 1, 3 } }, 0.0f);
+  image->Modified();
+  filter->SetCellMargin(0.6);
+  expectMessage(filter, "CellMargin");
+  filter->SetCellMargin(0.01);
+  filter->SetSmoothingWeight(-1.0);
+  expectMessage(filter, "SmoothingWeight");
+  filter->SetSmoothingWeight(1.0);
+  filter->Update(); // a single bright voxel: fine
+  EXPECT_TRUE(Measure(filter->GetOutput()).IsValidClosedSurface());
+
+  auto labels = itk::SurfaceNetsImageToMeshFilter<MaskImage>::New();
+  labels->SetInput(MakeImage<MaskImage>(5, 5, 5, 0));
+  labels->SetClassifyByLabel(true);
+  labels->SetLabelValue(3);
+  expectMessage(labels, "No voxel has the label 3");
+  auto mask = MakeImage<MaskImage>(5, 5, 5, 0);
+  mask->SetPixel({ { 1, 1, 1 } }, 3);
+  labels->SetInput(mask);
+  labels->SetRelaxation(Enums::Relaxation::Combined);
+  expectMessage(labels, "label image");
+  labels->SetRelaxation(Enums::Relaxation::Automatic);
+  labels->Update();
+  EXPECT_TRUE(Measure(labels->GetOutput()).IsValidClosedSurface());
+}
