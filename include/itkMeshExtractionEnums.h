@@ -42,10 +42,69 @@ public:
      * Outside + (Inside - Outside) * Phi(-d / EdgeWidth), plus optional noise. */
     BlurredStep
   };
+
+  /** The weights w_j of the Laplacian smoothing operator
+   * S(v) = v + sum_j w_j (v_j - v) / sum_j w_j (thesis eq. 2.5-2.6, section 2.2.4). */
+  enum class SmoothingWeights : std::uint8_t
+  {
+    /** w_j = 1: the average of the linked neighbours (standard Laplacian). */
+    Uniform = 0,
+    /** w_j = 1 / |v_j - v|. */
+    InverseEdgeLength,
+    /** The area-weighted average of the centroids of the incident triangles. */
+    Area,
+    /** w_j = cot(alpha_j) + cot(beta_j) (Desbrun), clamped at 0. */
+    Cotangent,
+    /** The average of the projections of v onto the bisectors of the 1-ring
+     * polygon's angles (thesis Figure 2.16). */
+    AngleBisector
+  };
+
+  /** When the new positions of a smoothing step take effect (thesis section 4.5.1). */
+  enum class SmoothingUpdate : std::uint8_t
+  {
+    /** Every new position is computed from the mesh as it was at the start of the step. */
+    Batch = 0,
+    /** Vertices move one by one, in increasing point identifier order, each seeing
+     * the moves made before it. */
+    Immediate
+  };
+
+  /** Restriction of a smoothing move (thesis sections 4.2.2 and 4.5.1). */
+  enum class MovementConstraint : std::uint8_t
+  {
+    /** The move goes to the smoothing target (times the relaxation factor). */
+    None = 0,
+    /** Centroid smoothing S_C = 1/3 v + 2/3 S(v). */
+    Centroid,
+    /** Safe smoothing: the move is clipped to the distance to the nearest neighbour
+     * (thesis Figure 4.8). */
+    Safe
+  };
+
+  /** When an edge is swapped (thesis sections 2.2.6 and 4.2.2). */
+  enum class EdgeSwapCriterion : std::uint8_t
+  {
+    /** Lower relaxation index E_b = sum (d_i - 6)^2 over the four quad corners (eq. 2.16). */
+    Regularity = 0,
+    /** The angles opposite the edge sum to more than pi, i.e. the fourth vertex lies in
+     * the circumcircle of the other three (thesis Figure 2.18). */
+    Delaunay,
+    /** The other diagonal of the quad is shorter. */
+    ShortestEdge
+  };
 };
 
 MeshExtraction_EXPORT std::ostream &
 operator<<(std::ostream & out, MeshExtractionEnums::PhantomImage value);
+MeshExtraction_EXPORT std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::SmoothingWeights value);
+MeshExtraction_EXPORT std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::SmoothingUpdate value);
+MeshExtraction_EXPORT std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::MovementConstraint value);
+MeshExtraction_EXPORT std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::EdgeSwapCriterion value);
 
 } // namespace itk
 

@@ -338,6 +338,120 @@ IntersectRayTriangle(const Vec3 & origin,
   return r;
 }
 
+// --- mesh improvement ---
+// Geometry of the smoothing and edge-swap filters (thesis sections 2.2.3-2.2.6, 4.5.1).
+
+/** q_area = 4 sqrt(3) A / (e1^2 + e2^2 + e3^2) of the triangle (a, b, c), the same
+ * value as MeasureTriangle(a, b, c).qArea without the angles; 0 when all three
+ * points coincide. */
+inline double
+TriangleQArea(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  const Vec3   ab = b - a;
+  const Vec3   ac = c - a;
+  const double sumSq = SquaredNorm(ab) + SquaredNorm(ac) + SquaredNorm(c - b);
+  if (!(sumSq > 0.0))
+  {
+    return 0.0;
+  }
+  return std::min(1.0, 2.0 * std::sqrt(3.0) * Norm(Cross(ab, ac)) / sumSq);
+}
+
+/** Cotangent of the angle at `apex` of the triangle (apex, p, q): the weight of
+ * the edge opposite `apex` in the cotangent (Desbrun) Laplacian. 0 for a
+ * degenerate triangle, whose angle has no finite cotangent. */
+inline double
+Cotangent(const Vec3 & apex, const Vec3 & p, const Vec3 & q)
+{
+  const Vec3   u = p - apex;
+  const Vec3   v = q - apex;
+  const double s = Norm(Cross(u, v));
+  if (!(s > 0.0))
+  {
+    return 0.0;
+  }
+  return Dot(u, v) / s;
+}
+
+/** Perpendicular projection of `p` onto the line through `origin` along
+ * `direction`; `origin` if the direction is the zero vector. */
+inline Vec3
+ProjectOntoLine(const Vec3 & p, const Vec3 & origin, const Vec3 & direction)
+{
+  const double l2 = SquaredNorm(direction);
+  if (!(l2 > 0.0))
+  {
+    return origin;
+  }
+  return origin + direction * (Dot(p - origin, direction) / l2);
+}
+
+/** Unit direction of the line bisecting the angle at `apex` between the rays to
+ * `p` and `q` (thesis Figure 2.16): the sum of the two unit vectors. When the rays
+ * are (nearly) opposite that sum vanishes and the bisector is the direction
+ * perpendicular to the rays in the plane normal to `normal`. The zero vector if
+ * neither is defined (a zero-length ray). The line bisects the reflex angle too. */
+inline Vec3
+AngleBisectorDirection(const Vec3 & apex, const Vec3 & p, const Vec3 & q, const Vec3 & normal)
+{
+  const Vec3   u = p - apex;
+  const Vec3   v = q - apex;
+  const double lu = Norm(u);
+  const double lv = Norm(v);
+  if (!(lu > 0.0) || !(lv > 0.0))
+  {
+    return Vec3(0.0);
+  }
+  Vec3         b = u * (1.0 / lu) + v * (1.0 / lv);
+  const double lb = Norm(b);
+  if (lb > 1e-6)
+  {
+    return b * (1.0 / lb);
+  }
+  b = Cross(normal, v * (1.0 / lv) - u * (1.0 / lu));
+  const double l = Norm(b);
+  return l > 0.0 ? b * (1.0 / l) : Vec3(0.0);
+}
+
+/** Sum of the two angles opposite the edge (a, b): the angle at c in the triangle
+ * (a, b, c) plus the angle at d in the triangle (b, a, d). The edge is locally
+ * Delaunay when the sum is at most pi; for a planar quad a sum above pi means d
+ * lies inside the circumcircle of (a, b, c) (thesis Figure 2.18), and this form
+ * extends the test to the non-planar quads of a surface mesh. */
+inline double
+OppositeAngleSum(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
+{
+  return AngleAtVertex(c, a, b) + AngleAtVertex(d, b, a);
+}
+
+/** Circumcentre of the triangle (a, b, c), in its plane; the centroid for a
+ * degenerate triangle (which has no circumcircle). */
+inline Vec3
+TriangleCircumcenter(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+{
+  const Vec3   ab = b - a;
+  const Vec3   ac = c - a;
+  const Vec3   n = Cross(ab, ac);
+  const double n2 = SquaredNorm(n);
+  if (!(n2 > 0.0))
+  {
+    return TriangleCentroid(a, b, c);
+  }
+  return a + (Cross(n, ab) * SquaredNorm(ac) + Cross(ac, n) * SquaredNorm(ab)) * (1.0 / (2.0 * n2));
+}
+
+/** Whether d, projected onto the plane of (a, b, c), lies strictly inside the
+ * circumcircle of (a, b, c) (relative tolerance 1e-12 on the squared radius). */
+inline bool
+IsInsideCircumcircle(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
+{
+  const Vec3   n = TriangleUnitNormal(a, b, c);
+  const Vec3   center = TriangleCircumcenter(a, b, c);
+  const Vec3   dd = d - n * Dot(d - center, n);
+  const double r2 = SquaredNorm(a - center);
+  return SquaredNorm(dd - center) < r2 * (1.0 - 1e-12);
+}
+
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -35,4 +35,66 @@ operator<<(std::ostream & out, MeshExtractionEnums::PhantomImage value)
   }
   return out << "INVALID VALUE FOR itk::MeshExtractionEnums::PhantomImage";
 }
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::SmoothingWeights value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::SmoothingWeights::Uniform:
+      return out << "itk::MeshExtractionEnums::SmoothingWeights::Uniform";
+    case MeshExtractionEnums::SmoothingWeights::InverseEdgeLength:
+      return out << "itk::MeshExtractionEnums::SmoothingWeights::InverseEdgeLength";
+    case MeshExtractionEnums::SmoothingWeights::Area:
+      return out << "itk::MeshExtractionEnums::SmoothingWeights::Area";
+    case MeshExtractionEnums::SmoothingWeights::Cotangent:
+      return out << "itk::MeshExtractionEnums::SmoothingWeights::Cotangent";
+    case MeshExtractionEnums::SmoothingWeights::AngleBisector:
+      return out << "itk::MeshExtractionEnums::SmoothingWeights::AngleBisector";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::SmoothingWeights";
+}
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::SmoothingUpdate value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::SmoothingUpdate::Batch:
+      return out << "itk::MeshExtractionEnums::SmoothingUpdate::Batch";
+    case MeshExtractionEnums::SmoothingUpdate::Immediate:
+      return out << "itk::MeshExtractionEnums::SmoothingUpdate::Immediate";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::SmoothingUpdate";
+}
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::MovementConstraint value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::MovementConstraint::None:
+      return out << "itk::MeshExtractionEnums::MovementConstraint::None";
+    case MeshExtractionEnums::MovementConstraint::Centroid:
+      return out << "itk::MeshExtractionEnums::MovementConstraint::Centroid";
+    case MeshExtractionEnums::MovementConstraint::Safe:
+      return out << "itk::MeshExtractionEnums::MovementConstraint::Safe";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::MovementConstraint";
+}
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::EdgeSwapCriterion value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::EdgeSwapCriterion::Regularity:
+      return out << "itk::MeshExtractionEnums::EdgeSwapCriterion::Regularity";
+    case MeshExtractionEnums::EdgeSwapCriterion::Delaunay:
+      return out << "itk::MeshExtractionEnums::EdgeSwapCriterion::Delaunay";
+    case MeshExtractionEnums::EdgeSwapCriterion::ShortestEdge:
+      return out << "itk::MeshExtractionEnums::EdgeSwapCriterion::ShortestEdge";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::EdgeSwapCriterion";
+}
 } // namespace itk

@@ -1,0 +1,298 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef MeshExtractionImproveCommand_h
+#define MeshExtractionImproveCommand_h
+
+#include "MeshExtractionCommandHelpers.h"
+#include "MeshExtractionQualityCommand.h"
+#include "itkEdgeSwapQuadEdgeMeshFilter.h"
+#include "itkLaplacianSmoothingQuadEdgeMeshFilter.h"
+#include "itkQuadEdgeMesh.h"
+#include "itkTaubinSmoothingQuadEdgeMeshFilter.h"
+#include "itkTriangleMeshQualityCalculator.h"
+
+namespace MeshExtractionCLI
+{
+// ------------------------------------------------------------------------------
+// improve
+// ------------------------------------------------------------------------------
+using ImproveMeshType = itk::QuadEdgeMesh<double, 3>;
+
+/** The value of `--name` among `names` (index into `values`), or `fallback`. */
+template <typename T>
+T
+ChooseOption(const Arguments &                args,
+             const std::string &              name,
+             const std::vector<std::string> & names,
+             const std::vector<T> &           values,
+             T                                fallback)
+{
+  if (!args.Has(name))
+  {
+    return fallback;
+  }
+  const std::string value = args.Get(name);
+  std::string       list;
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    if (names[i] == value)
+    {
+      return values[i];
+    }
+    list += (i == 0 ? "" : (i + 1 == names.size() ? " or " : ", ")) + names[i];
+  }
+  throw UsageError("--" + name + " must be " + list + ", got '" + value + "'");
+}
+
+/** Reads any mesh ITK reads into a triangle QuadEdgeMesh (quadrilaterals are split
+ * along their shorter diagonal); a mesh the quad-edge structure cannot hold
+ * (non-manifold edges, inconsistent orientation) is refused with a clear error. */
+inline ImproveMeshType::Pointer
+ReadManifoldMesh(const std::string & path)
+{
+  const IOMeshType::Pointer     mesh = ReadMeshFile(path);
+  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  auto                          out = ImproveMeshType::New();
+  try
+  {
+    ME::FillMesh(triangles, *out);
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which "
+                                 << "'improve' needs: " << Describe(e));
+  }
+  return out;
+}
+
+inline MeasuredMesh
+MeasureForImprove(const ImproveMeshType * mesh, const std::string & name)
+{
+  auto calculator = itk::TriangleMeshQualityCalculator<ImproveMeshType>::New();
+  calculator->SetMesh(mesh);
+  calculator->Compute();
+  MeasuredMesh m;
+  m.name = name;
+  m.quality = calculator->GetReport();
+  return m;
+}
+
+inline int
+RunImprove(const Arguments & args)
+{
+  using Weights = itk::MeshExtractionEnums::SmoothingWeights;
+  using Update = itk::MeshExtractionEnums::SmoothingUpdate;
+  using Constraint = itk::MeshExtractionEnums::MovementConstraint;
+  using Criterion = itk::MeshExtractionEnums::EdgeSwapCriterion;
+
+  const std::string smoothing = ChooseOption<std::string>(
+    args, "smoothing", { "laplacian", "taubin", "none" }, { "laplacian", "taubin", "none" }, "laplacian");
+  const Weights weights = ChooseOption(
+    args,
+    "weights",
+    { "uniform", "inverse-edge-length", "area", "cotangent", "angle-bisector" },
+    { Weights::Uniform, Weights::InverseEdgeLength, Weights::Area, Weights::Cotangent, Weights::AngleBisector },
+    Weights::Uniform);
+  const Update update =
+    ChooseOption(args, "update", { "batch", "immediate" }, { Update::Batch, Update::Immediate }, Update::Batch);
+  const Constraint constraint = ChooseOption(args,
+                                             "constraint",
+                                             { "none", "centroid", "safe" },
+                                             { Constraint::None, Constraint::Centroid, Constraint::Safe },
+                                             Constraint::Centroid);
+  const bool       swap = args.Has("swap");
+  const Criterion  criterion = ChooseOption(args,
+                                           "swap",
+                                           { "regularity", "delaunay", "shortest-edge" },
+                                           { Criterion::Regularity, Criterion::Delaunay, Criterion::ShortestEdge },
+                                           Criterion::Regularity);
+
+  // Options that only make sense with another choice.
+  const char * laplacianOnly[] = { "constraint", "relaxation", "volume-preservation" };
+  for (const char * option : laplacianOnly)
+  {
+    if (args.Has(option) && smoothing != "laplacian")
+    {
+      throw UsageError(std::string("--") + option + " applies to --smoothing laplacian");
+    }
+  }
+  const char * taubinOnly[] = { "lambda", "mu", "pass-band" };
+  for (const char * option : taubinOnly)
+  {
+    if (args.Has(option) && smoothing != "taubin")
+    {
+      throw UsageError(std::string("--") + option + " applies to --smoothing taubin");
+    }
+  }
+  if (args.Has("mu") && args.Has("pass-band"))
+  {
+    throw UsageError("give either --mu or --pass-band, not both");
+  }
+  const char * smoothingOptions[] = { "weights", "update", "iterations" };
+  for (const char * option : smoothingOptions)
+  {
+    if (args.Has(option) && smoothing == "none")
+    {
+      throw UsageError(std::string("--") + option + " needs smoothing (--smoothing laplacian or taubin)");
+    }
+  }
+  const char * swapOptions[] = { "swap-iterations", "feature-angle", "swap-quality" };
+  for (const char * option : swapOptions)
+  {
+    if (args.Has(option) && !swap)
+    {
+      throw UsageError(std::string("--") + option + " needs --swap");
+    }
+  }
+  const long iterations = args.GetInteger("iterations", 10);
+  if (iterations < 0)
+  {
+    throw UsageError("--iterations must be >= 0, got " + std::to_string(iterations));
+  }
+  const long swapIterations = args.GetInteger("swap-iterations", 20);
+  if (swapIterations < 0)
+  {
+    throw UsageError("--swap-iterations must be >= 0, got " + std::to_string(swapIterations));
+  }
+
+  const std::string &      inputPath = args.positional[0];
+  const std::string &      outputPath = args.positional[1];
+  Stopwatch                watch;
+  ImproveMeshType::Pointer mesh = ReadManifoldMesh(inputPath);
+  std::cerr << "improve " << inputPath << ": " << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces()
+            << " triangles\n";
+  MeasuredMesh before;
+  if (args.Has("report"))
+  {
+    before = MeasureForImprove(mesh, "before: " + inputPath);
+  }
+
+  // Thesis section 4.2.4: an edge swap first, then smoothing, which converges faster
+  // on the regularised mesh.
+  if (swap)
+  {
+    auto filter = itk::EdgeSwapQuadEdgeMeshFilter<ImproveMeshType>::New();
+    filter->SetInput(mesh);
+    filter->SetCriterion(criterion);
+    filter->SetMaximumNumberOfIterations(static_cast<int>(swapIterations));
+    filter->SetFeatureAngle(args.GetDouble("feature-angle", filter->GetFeatureAngle()));
+    filter->SetMinimumQAreaRatio(args.GetDouble("swap-quality", filter->GetMinimumQAreaRatio()));
+    ReportProgress(filter.GetPointer(), "edge swap");
+    filter->Update();
+    std::cout << "edge swap (" << args.Get("swap") << "): " << filter->GetNumberOfSwaps() << " swaps in "
+              << filter->GetNumberOfIterations() << " passes, " << filter->GetNumberOfRefusedSwaps()
+              << " improving swaps refused by the validity checks\n";
+    mesh = filter->GetOutput();
+    mesh->DisconnectPipeline();
+  }
+
+  if (smoothing == "laplacian")
+  {
+    auto filter = itk::LaplacianSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
+    filter->SetInput(mesh);
+    filter->SetWeights(weights);
+    filter->SetUpdateMode(update);
+    filter->SetMovementConstraint(constraint);
+    filter->SetNumberOfIterations(static_cast<int>(iterations));
+    filter->SetRelaxationFactor(args.GetDouble("relaxation", filter->GetRelaxationFactor()));
+    filter->SetVolumePreservation(args.Has("volume-preservation"));
+    ReportProgress(filter.GetPointer(), "laplacian smoothing");
+    filter->Update();
+    std::cout << "laplacian smoothing (" << args.Get("weights", "uniform") << ", " << args.Get("constraint", "centroid")
+              << ", " << args.Get("update", "batch") << "): " << iterations << " iterations of "
+              << filter->GetNumberOfMovableVertices() << " movable vertices, " << filter->GetNumberOfMoves()
+              << " moves, " << filter->GetNumberOfShortenedMoves() << " shortened and "
+              << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
+    mesh = filter->GetOutput();
+    mesh->DisconnectPipeline();
+  }
+  else if (smoothing == "taubin")
+  {
+    auto filter = itk::TaubinSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
+    filter->SetInput(mesh);
+    filter->SetWeights(weights);
+    filter->SetUpdateMode(update);
+    filter->SetNumberOfIterations(static_cast<int>(iterations));
+    filter->SetLambda(args.GetDouble("lambda", filter->GetLambda()));
+    filter->SetMu(args.GetDouble("mu", filter->GetMu()));
+    filter->SetPassBandFrequency(args.GetDouble("pass-band", 0.0));
+    ReportProgress(filter.GetPointer(), "taubin smoothing");
+    filter->Update();
+    std::cout << "taubin smoothing (lambda " << filter->GetLambda() << ", mu " << filter->GetEffectiveMu() << ", "
+              << args.Get("weights", "uniform") << ", " << args.Get("update", "batch") << "): " << iterations
+              << " iterations of " << filter->GetNumberOfMovableVertices() << " movable vertices, "
+              << filter->GetNumberOfMoves() << " moves, " << filter->GetNumberOfShortenedMoves() << " shortened and "
+              << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
+    mesh = filter->GetOutput();
+    mesh->DisconnectPipeline();
+  }
+
+  WriteMeshFile(mesh.GetPointer(), outputPath);
+  std::cerr << "  wrote " << outputPath << " in " << std::fixed << std::setprecision(2) << watch.Seconds() << " s\n"
+            << std::defaultfloat;
+  if (args.Has("report"))
+  {
+    const MeasuredMesh after = MeasureForImprove(mesh, "after: " + outputPath);
+    before.quality.Print(std::cout, before.name);
+    std::cout << '\n';
+    after.quality.Print(std::cout, after.name);
+    std::cout << '\n';
+    PrintComparison({ before, after }, std::cout);
+  }
+  return 0;
+}
+
+inline Command
+MakeImproveCommand()
+{
+  Command c;
+  c.name = "improve";
+  c.summary = "improve a mesh: edge swaps, then Laplacian or Taubin smoothing that never inverts triangles";
+  c.usage = "INPUT OUTPUT [options]";
+  c.description = "Reads a triangle mesh (any format ITK reads; it must be manifold and consistently oriented),\n"
+                  "optionally swaps edges (EdgeSwapQuadEdgeMeshFilter: regularity Eb = sum (d-6)^2, Delaunay or\n"
+                  "shortest edge, with the validity checks of thesis 4.5.1), then smooths it\n"
+                  "(LaplacianSmoothingQuadEdgeMeshFilter or TaubinSmoothingQuadEdgeMeshFilter, lambda|mu) and\n"
+                  "writes OUTPUT (format from its extension). Every smoothing move passes a guard: a move that\n"
+                  "would invert or degenerate a triangle is halved or rejected, and the counts are printed.\n"
+                  "Boundary vertices of open meshes stay in place. --report prints the quality before and after.";
+  c.options = {
+    { "smoothing", "laplacian|taubin|none", "smoothing after the swaps", "laplacian" },
+    { "weights", "NAME", "uniform, inverse-edge-length, area, cotangent or angle-bisector", "uniform" },
+    { "constraint", "none|centroid|safe", "laplacian: move restriction (thesis 4.2.2, Fig. 4.8)", "centroid" },
+    { "update", "batch|immediate", "when new positions take effect", "batch" },
+    { "iterations", "N", "smoothing iterations (taubin: lambda|mu pairs)", "10" },
+    { "relaxation", "F", "laplacian: relaxation factor in (0, 1]", "1" },
+    { "lambda", "L", "taubin: positive step factor in (0, 1]", "0.5" },
+    { "mu", "M", "taubin: negative step factor, < -lambda", "-0.53" },
+    { "pass-band", "K", "taubin: pass-band frequency k_PB; mu from 1/lambda + 1/mu = K", "" },
+    { "volume-preservation", "", "laplacian: approximate volume preservation (thesis eq. 2.7-2.10)", "" },
+    { "swap", "regularity|delaunay|shortest-edge", "swap edges first by this criterion", "no swaps" },
+    { "swap-iterations", "N", "largest number of passes over the edges", "20" },
+    { "feature-angle", "DEG", "no swap across or creating a crease sharper than this", "60" },
+    { "swap-quality", "RATIO", "a swap keeps its worst triangle's q_area >= RATIO x the old worst", "0" },
+    { "report", "", "print the quality before and after", "" },
+  };
+  c.minimumPositional = 2;
+  c.maximumPositional = 2;
+  c.run = RunImprove;
+  return c;
+}
+} // namespace MeshExtractionCLI
+
+#endif

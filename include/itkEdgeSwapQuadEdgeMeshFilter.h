@@ -1,0 +1,160 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkEdgeSwapQuadEdgeMeshFilter_h
+#define itkEdgeSwapQuadEdgeMeshFilter_h
+
+#include "itkMeshExtractionEdgeSwapCriteria.h"
+#include "itkMeshExtractionEnums.h"
+#include "itkMeshExtractionMacros.h"
+#include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
+#include "itkQuadEdgeMeshToQuadEdgeMeshFilter.h"
+
+namespace itk
+{
+/** \class EdgeSwapQuadEdgeMeshFilter
+ * \brief Swaps edges of a triangle mesh while that improves a criterion, never
+ * making the mesh invalid (thesis sections 2.2.6, 4.2.2 and 4.5.1).
+ *
+ * Two triangles sharing an edge form a quad; swapping the edge replaces it with the
+ * quad's other diagonal. Criterion:
+ * - Regularity (default): the relaxation index E_b = sum (d_i - 6)^2 over the quad's
+ *   four corners drops (thesis eq. 2.16; d_i the number of edges at corner i, aiming
+ *   at 4 instead of 6 for vertices on a boundary). It promotes valence 6 and so
+ *   near-equilateral triangles, and cannot oscillate;
+ * - Delaunay: the two angles opposite the edge sum to more than pi (the fourth
+ *   corner lies inside the circumcircle of the other three, Figure 2.18);
+ * - ShortestEdge: the other diagonal is shorter.
+ *
+ * A swap that improves the criterion is made only if it passes the checks of
+ * section 4.5.1 (MeshExtraction::CheckEdgeSwap, shared with other mesh types):
+ * both corners of the old edge keep at least 3 edges (2 on a boundary, the tip of a
+ * single triangle); neither new triangle is
+ * degenerate (q_area > DegenerateQAreaTolerance, default 1e-4); each new triangle's
+ * normal makes an angle below 90 degrees with each old one (so a concave quad is
+ * never swapped); the dihedral angle of the old pair and of the new pair is at most
+ * FeatureAngle (degrees, default 60), so sharp features are neither cut nor made;
+ * and the new edge does not exist yet, so the mesh stays manifold without duplicate
+ * edges. Optionally (MinimumQAreaRatio > 0, default 0; beyond the thesis) a swap must
+ * also keep the worse of its two triangles at that fraction of the old worse one's
+ * q_area: on marching-cubes meshes pure regularity swaps raise the share of valence
+ * 6 but lower the mean q_area until the mesh is smoothed, and a ratio of 1 avoids
+ * that. The swap itself is ITK's QuadEdgeMeshEulerOperatorFlipEdgeFunction, whose
+ * result is checked.
+ *
+ * The filter makes passes over all edges, in increasing order of their (smaller,
+ * larger) point identifiers, each edge judged on the mesh as the earlier swaps of
+ * the pass left it; it stops after a pass without a swap or after
+ * MaximumNumberOfIterations passes (default 20, >= 0). The result is deterministic.
+ * Only internal edges between two triangles are candidates; boundary edges stay.
+ * Points keep their identifiers, positions and point data; faces are re-created by
+ * the swaps, so face identifiers change and face (cell) data does not follow them.
+ *
+ * GetNumberOfSwaps() counts the swaps made, GetNumberOfRefusedSwaps() the
+ * improving swaps that a check refused (once per pass), GetNumberOfIterations()
+ * the passes made. A missing input, a non-triangle face or a parameter out of range
+ * raises an ExceptionObject.
+ *
+ * \sa LaplacianSmoothingQuadEdgeMeshFilter
+ * \ingroup MeshExtraction
+ */
+template <typename TInputMesh, typename TOutputMesh = TInputMesh>
+class ITK_TEMPLATE_EXPORT EdgeSwapQuadEdgeMeshFilter : public QuadEdgeMeshToQuadEdgeMeshFilter<TInputMesh, TOutputMesh>
+{
+public:
+  ITK_DISALLOW_COPY_AND_MOVE(EdgeSwapQuadEdgeMeshFilter);
+
+  using Self = EdgeSwapQuadEdgeMeshFilter;
+  using Superclass = QuadEdgeMeshToQuadEdgeMeshFilter<TInputMesh, TOutputMesh>;
+  using Pointer = SmartPointer<Self>;
+  using ConstPointer = SmartPointer<const Self>;
+
+  itkOverrideGetNameOfClassMacro(EdgeSwapQuadEdgeMeshFilter);
+  itkNewMacro(Self);
+
+  using InputMeshType = TInputMesh;
+  using OutputMeshType = TOutputMesh;
+  using OutputQEType = typename OutputMeshType::QEType;
+  using OutputPointIdentifier = typename OutputMeshType::PointIdentifier;
+  using FlipEdgeFunctionType = QuadEdgeMeshEulerOperatorFlipEdgeFunction<OutputMeshType, OutputQEType>;
+  using EdgeSwapCriterionEnum = MeshExtractionEnums::EdgeSwapCriterion;
+
+  static_assert(OutputMeshType::PointDimension == 3, "EdgeSwapQuadEdgeMeshFilter works on 3-D surface meshes");
+
+  /** Regularity (default), Delaunay or ShortestEdge. */
+  itkSetEnumMacro(Criterion, EdgeSwapCriterionEnum);
+  itkGetEnumMacro(Criterion, EdgeSwapCriterionEnum);
+
+  /** Largest number of passes over the edges, >= 0 (default 20). */
+  itkSetMacro(MaximumNumberOfIterations, int);
+  itkGetConstMacro(MaximumNumberOfIterations, int);
+
+  /** Largest dihedral angle in degrees, in (0, 180], between the two triangles at an
+   * edge before or after a swap (default 60). */
+  itkSetMacro(FeatureAngle, double);
+  itkGetConstMacro(FeatureAngle, double);
+
+  /** A swap may not create a triangle with q_area at or below this, in [0, 1)
+   * (default 1e-4). */
+  itkSetMacro(DegenerateQAreaTolerance, double);
+  itkGetConstMacro(DegenerateQAreaTolerance, double);
+
+  /** A swap must leave its worst new triangle with at least this times the q_area of
+   * the worst old one, >= 0 (default 0: no requirement). */
+  itkSetMacro(MinimumQAreaRatio, double);
+  itkGetConstMacro(MinimumQAreaRatio, double);
+
+  /** Results of the last update. */
+  itkGetConstMacro(NumberOfSwaps, SizeValueType);
+  itkGetConstMacro(NumberOfRefusedSwaps, SizeValueType);
+  itkGetConstMacro(NumberOfIterations, int);
+
+protected:
+  EdgeSwapQuadEdgeMeshFilter() = default;
+  ~EdgeSwapQuadEdgeMeshFilter() override = default;
+  void
+  PrintSelf(std::ostream & os, Indent indent) const override;
+
+  /** Checks, copies the input, then swap passes until none swaps. */
+  void
+  GenerateData() override;
+
+  void
+  VerifyParameters() const;
+
+  /** One pass over the edges; returns the number of swaps made. */
+  SizeValueType
+  SwapPass(OutputMeshType * mesh, const MeshExtraction::EdgeSwapParameters & parameters);
+
+private:
+  EdgeSwapCriterionEnum m_Criterion{ EdgeSwapCriterionEnum::Regularity };
+  int                   m_MaximumNumberOfIterations{ 20 };
+  double                m_FeatureAngle{ 60.0 };
+  double                m_DegenerateQAreaTolerance{ 1e-4 };
+  double                m_MinimumQAreaRatio{ 0.0 };
+
+  SizeValueType m_NumberOfSwaps{ 0 };
+  SizeValueType m_NumberOfRefusedSwaps{ 0 };
+  int           m_NumberOfIterations{ 0 };
+};
+} // namespace itk
+
+#ifndef ITK_MANUAL_INSTANTIATION
+#  include "itkEdgeSwapQuadEdgeMeshFilter.hxx"
+#endif
+
+#endif

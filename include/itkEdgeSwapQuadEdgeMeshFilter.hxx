@@ -1,0 +1,217 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkEdgeSwapQuadEdgeMeshFilter_hxx
+#define itkEdgeSwapQuadEdgeMeshFilter_hxx
+
+#include "itkEdgeSwapQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionQuadEdgeMeshVertexSmoother.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace itk
+{
+template <typename TInputMesh, typename TOutputMesh>
+void
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::VerifyParameters() const
+{
+  if (m_MaximumNumberOfIterations < 0)
+  {
+    itkExceptionMacro(<< "MaximumNumberOfIterations must be >= 0, got " << m_MaximumNumberOfIterations);
+  }
+  if (!(m_FeatureAngle > 0.0 && m_FeatureAngle <= 180.0))
+  {
+    itkExceptionMacro(<< "FeatureAngle must be in (0, 180] degrees, got " << m_FeatureAngle);
+  }
+  if (!(m_DegenerateQAreaTolerance >= 0.0 && m_DegenerateQAreaTolerance < 1.0))
+  {
+    itkExceptionMacro(<< "DegenerateQAreaTolerance must be in [0, 1), got " << m_DegenerateQAreaTolerance);
+  }
+  if (!(m_MinimumQAreaRatio >= 0.0) || !std::isfinite(m_MinimumQAreaRatio))
+  {
+    itkExceptionMacro(<< "MinimumQAreaRatio must be a finite number >= 0, got " << m_MinimumQAreaRatio);
+  }
+  if (m_Criterion != EdgeSwapCriterionEnum::Regularity && m_Criterion != EdgeSwapCriterionEnum::Delaunay &&
+      m_Criterion != EdgeSwapCriterionEnum::ShortestEdge)
+  {
+    itkExceptionMacro(<< "Unknown Criterion " << static_cast<int>(m_Criterion));
+  }
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+auto
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *                           mesh,
+                                                              const MeshExtraction::EdgeSwapParameters & parameters)
+  -> SizeValueType
+{
+  using MeshExtraction::ToVec3;
+  // The edges as (smaller, larger) point identifiers, in increasing order: the
+  // order does not depend on where the quad-edge structure keeps them.
+  std::vector<std::pair<OutputPointIdentifier, OutputPointIdentifier>> edges;
+  const auto *                                                         edgeCells = mesh->GetEdgeCells();
+  if (edgeCells == nullptr)
+  {
+    return 0;
+  }
+  edges.reserve(edgeCells->Size());
+  for (auto it = edgeCells->Begin(); it != edgeCells->End(); ++it)
+  {
+    const auto * cell = it.Value();
+    if (cell == nullptr || cell->GetNumberOfPoints() != 2)
+    {
+      continue;
+    }
+    auto                        p = cell->PointIdsBegin();
+    const OutputPointIdentifier a = *p;
+    const OutputPointIdentifier b = *(p + 1);
+    edges.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::sort(edges.begin(), edges.end());
+
+  auto          flip = FlipEdgeFunctionType::New();
+  auto *        points = mesh->GetPoints();
+  SizeValueType swaps = 0;
+  for (const auto & ab : edges)
+  {
+    OutputQEType * e = mesh->FindEdge(ab.first, ab.second);
+    if (e == nullptr || !e->IsInternal() || !e->IsLnextOfTriangle() || !e->GetSym()->IsLnextOfTriangle())
+    {
+      continue; // swapped away earlier in this pass, on a boundary, or not between two triangles
+    }
+    const OutputPointIdentifier a = e->GetOrigin();
+    const OutputPointIdentifier b = e->GetDestination();
+    const OutputPointIdentifier c = e->GetLnext()->GetDestination();
+    const OutputPointIdentifier d = e->GetSym()->GetLnext()->GetDestination();
+    const auto &                pa = points->ElementAt(a);
+    const auto &                pb = points->ElementAt(b);
+    const auto &                pc = points->ElementAt(c);
+    const auto &                pd = points->ElementAt(d);
+
+    MeshExtraction::EdgeSwapQuad quad;
+    quad.a = ToVec3(pa);
+    quad.b = ToVec3(pb);
+    quad.c = ToVec3(pc);
+    quad.d = ToVec3(pd);
+    quad.valenceA = static_cast<unsigned int>(std::max(0, pa.GetValence()));
+    quad.valenceB = static_cast<unsigned int>(std::max(0, pb.GetValence()));
+    quad.valenceC = static_cast<unsigned int>(std::max(0, pc.GetValence()));
+    quad.valenceD = static_cast<unsigned int>(std::max(0, pd.GetValence()));
+    quad.boundaryA = !pa.IsInternal();
+    quad.boundaryB = !pb.IsInternal();
+    quad.boundaryC = !pc.IsInternal();
+    quad.boundaryD = !pd.IsInternal();
+    quad.sameApex = c == d;
+    quad.oppositeEdgeExists = !quad.sameApex && mesh->FindEdge(c, d) != nullptr;
+
+    const MeshExtraction::EdgeSwapDecision decision = MeshExtraction::EvaluateEdgeSwap(quad, parameters);
+    if (decision.verdict == MeshExtraction::EdgeSwapVerdict::NoImprovement)
+    {
+      continue;
+    }
+    if (!decision.Swap())
+    {
+      ++m_NumberOfRefusedSwaps;
+      continue;
+    }
+    flip->SetInput(mesh);
+    OutputQEType * result = flip->Evaluate(e);
+    if (result == nullptr)
+    {
+      // FlipEdge checks what CheckEdgeSwap checked and leaves the mesh unchanged
+      // when it refuses; count it as refused.
+      ++m_NumberOfRefusedSwaps;
+      continue;
+    }
+    const OutputPointIdentifier o = result->GetOrigin();
+    const OutputPointIdentifier t = result->GetDestination();
+    if (!((o == c && t == d) || (o == d && t == c)) || !result->IsInternal())
+    {
+      itkExceptionMacro(<< "QuadEdgeMeshEulerOperatorFlipEdgeFunction turned edge (" << a << ", " << b << ") into ("
+                        << o << ", " << t << ") instead of (" << c << ", " << d << ")");
+    }
+    ++swaps;
+  }
+  return swaps;
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+void
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
+{
+  m_NumberOfSwaps = 0;
+  m_NumberOfRefusedSwaps = 0;
+  m_NumberOfIterations = 0;
+
+  const InputMeshType * input = this->GetInput();
+  if (input == nullptr)
+  {
+    itkExceptionMacro(<< "No input mesh: call SetInput() before Update()");
+  }
+  this->VerifyParameters();
+  typename InputMeshType::CellIdentifier cell = 0;
+  unsigned int                           numberOfPoints = 0;
+  if (MeshExtraction::QuadEdgeMeshVertexSmoother<InputMeshType>::FindNonTriangleFace(*input, cell, numberOfPoints))
+  {
+    itkExceptionMacro(<< "The input must be a triangle mesh, but face " << cell << " has " << numberOfPoints
+                      << " points");
+  }
+
+  this->CopyInputMeshToOutputMesh();
+  OutputMeshType * output = this->GetOutput();
+
+  MeshExtraction::EdgeSwapParameters parameters;
+  parameters.criterion = m_Criterion;
+  parameters.minimumValence = 3;
+  parameters.featureAngle = m_FeatureAngle * itk::Math::pi / 180.0;
+  parameters.degenerateQAreaTolerance = m_DegenerateQAreaTolerance;
+  parameters.minimumQAreaRatio = m_MinimumQAreaRatio;
+
+  this->UpdateProgress(0.0f);
+  for (int pass = 0; pass < m_MaximumNumberOfIterations; ++pass)
+  {
+    const SizeValueType swaps = this->SwapPass(output, parameters);
+    m_NumberOfSwaps += swaps;
+    ++m_NumberOfIterations;
+    this->UpdateProgress(static_cast<float>(pass + 1) / static_cast<float>(m_MaximumNumberOfIterations));
+    if (swaps == 0)
+    {
+      break;
+    }
+  }
+  this->UpdateProgress(1.0f);
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+void
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::PrintSelf(std::ostream & os, Indent indent) const
+{
+  Superclass::PrintSelf(os, indent);
+  os << indent << "Criterion: " << m_Criterion << std::endl;
+  os << indent << "MaximumNumberOfIterations: " << m_MaximumNumberOfIterations << std::endl;
+  os << indent << "FeatureAngle: " << m_FeatureAngle << std::endl;
+  os << indent << "DegenerateQAreaTolerance: " << m_DegenerateQAreaTolerance << std::endl;
+  os << indent << "MinimumQAreaRatio: " << m_MinimumQAreaRatio << std::endl;
+  os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << std::endl;
+  os << indent << "NumberOfRefusedSwaps: " << m_NumberOfRefusedSwaps << std::endl;
+  os << indent << "NumberOfIterations: " << m_NumberOfIterations << std::endl;
+}
+} // namespace itk
+
+#endif
