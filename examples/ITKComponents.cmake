@@ -5,6 +5,7 @@ set(MeshExtractionExamples_ITK_COMPONENTS
   ITKIONRRD
   ITKIOMeta
   ITKIONIFTI
+  ITKIOPNG
   ITKIOGDCM
   ITKIOMeshBase
   ITKIOMeshVTK

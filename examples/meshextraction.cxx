@@ -18,12 +18,18 @@
 // meshextraction: the MeshExtraction module's command-line tool.
 //
 //   meshextraction phantom NAME OUT.nrrd [options]   write a phantom image
+//   meshextraction extract IN OUT.vtk [options]      extract a surface mesh
+//   meshextraction improve IN OUT.vtk [options]      smooth and swap edges of a mesh
+//   meshextraction report DIR MESH... [options]      HTML report with plots and renderings
 //   meshextraction quality MESH... [options]         measure meshes
 //
 // Run `meshextraction COMMAND --help` for the options of each command.
 
+#include "MeshExtractionExtractCommand.h"
+#include "MeshExtractionImproveCommand.h"
 #include "MeshExtractionPhantomCommand.h"
 #include "MeshExtractionQualityCommand.h"
+#include "MeshExtractionReportCommand.h"
 
 using namespace MeshExtractionCLI;
 
@@ -33,7 +39,7 @@ namespace
 std::vector<Command>
 Commands()
 {
-  return { MakePhantomCommand(), MakeQualityCommand() };
+  return { MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(), MakeQualityCommand(), MakeReportCommand() };
 }
 void
 PrintUsage(std::ostream & os, const std::vector<Command> & commands)

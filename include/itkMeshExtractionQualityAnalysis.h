@@ -166,9 +166,10 @@ MeshExtraction_EXPORT std::vector<int>
 ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance = 1e-6);
 
 /** Pairs (i < j) of non-degenerate faces that intersect away from their shared
- * vertices and edge, sorted. */
+ * vertices and edge, sorted. With `queries`, only pairs that include one of
+ * those triangles are sought (e.g. the faces that moved since the last check). */
 MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
-FindSelfIntersections(const IndexedTriangleMesh & mesh);
+FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

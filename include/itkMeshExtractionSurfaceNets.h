@@ -124,6 +124,13 @@ struct MeshExtraction_EXPORT SurfaceNet
 MeshExtraction_EXPORT void
 BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits = 0);
 
+/** Iterations run and the last largest relocation (voxels) of a relaxation. */
+struct SurfaceNetsRelaxationResultSummary
+{
+  unsigned int iterations{ 0 };
+  double       lastMaximumRelocation{ 0.0 };
+};
+
 /** The way quads become faces. */
 enum class QuadSplit : std::uint8_t
 {

@@ -143,6 +143,21 @@ public:
   /** Faces (default shortest diagonal). */
   itkSetEnumMacro(Triangulation, TriangulationEnum);
   itkGetEnumMacro(Triangulation, TriangulationEnum);
+  /** High-quality mode (default off; thesis 2.3 and 4.2.4 applied to SurfaceNets):
+   * after the SNERT relaxation, rounds of regularity edge swaps (the decision of
+   * EdgeSwapQuadEdgeMeshFilter) followed by SNERT relaxation on the triangle mesh's
+   * 1-rings, every node still inside its own cell and on the iso-surface. Moves that
+   * would flip, degenerate or cross a triangle are undone. Needs triangles. */
+  itkSetMacro(HighQuality, bool);
+  itkGetConstMacro(HighQuality, bool);
+  itkBooleanMacro(HighQuality);
+  /** Rounds of swaps and relaxation in high-quality mode (default 8); a round without
+   * a swap ends them early. */
+  itkSetMacro(NumberOfImprovementRounds, unsigned int);
+  itkGetConstMacro(NumberOfImprovementRounds, unsigned int);
+  /** SNERT iterations per round in high-quality mode (default 4). */
+  itkSetMacro(ImprovementIterations, unsigned int);
+  itkGetConstMacro(ImprovementIterations, unsigned int);
   /** Undo relaxation where faces would cross (default on): nodes of crossing
    * faces move back toward their cell centres until the mesh is free of
    * self-intersections (see GetNumberOfNodesMovedBack). */
@@ -162,6 +177,9 @@ public:
   itkGetConstMacro(NumberOfNodes, SizeValueType);
   itkGetConstMacro(NumberOfSplitCells, SizeValueType);
   itkGetConstMacro(NumberOfNodesMovedBack, SizeValueType);
+  /** After Update() in high-quality mode: swaps kept, and improvement rounds run. */
+  itkGetConstMacro(NumberOfSwaps, SizeValueType);
+  itkGetConstMacro(NumberOfRoundsPerformed, unsigned int);
 
   /** After Update(): the net itself (nodes in continuous index space, quads, links). */
   const MeshExtraction::SurfaceNet &
@@ -185,12 +203,15 @@ protected:
   /** Stage 1: surface cells of the input (or the label image). */
   void
   ClassifyCells();
-  /** Stage 3: relax with the parameters; sets the iteration counters. */
+  /** Stage 3: relax the net along its links (at most `iterations` times). */
+  MeshExtraction::SurfaceNetsRelaxationResultSummary
+  RelaxNet(RelaxationEnum relaxation, unsigned int iterations);
+  /** Stage 5 (high-quality mode): swaps and relaxation on the triangles. */
   void
-  RelaxNet(RelaxationEnum relaxation);
-  /** Stage 4: faces in physical space, into the output mesh. */
+  ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles);
+  /** Stage 4: the faces (node indices) with the nodes in physical space, into the output mesh. */
   void
-  MakeOutputMesh();
+  MakeOutputMesh(const std::vector<std::array<std::uint32_t, 4>> & polygons, unsigned int polygonSize);
   /** The index-to-physical matrix (direction * spacing), the physical point of the
    * buffer's first voxel, and the face split of the Triangulation setting. */
   void
@@ -217,12 +238,17 @@ private:
   TriangulationEnum m_Triangulation{ TriangulationEnum::ShortestDiagonal };
   double            m_CellMargin{ 0.01 };
   bool              m_PreventSelfIntersections{ true };
+  bool              m_HighQuality{ false };
+  unsigned int      m_NumberOfImprovementRounds{ 8 };
+  unsigned int      m_ImprovementIterations{ 4 };
 
   unsigned int  m_NumberOfIterations{ 0 };
   double        m_LastMaximumRelocation{ 0.0 };
   SizeValueType m_NumberOfNodes{ 0 };
   SizeValueType m_NumberOfSplitCells{ 0 };
   SizeValueType m_NumberOfNodesMovedBack{ 0 };
+  SizeValueType m_NumberOfSwaps{ 0 };
+  unsigned int  m_NumberOfRoundsPerformed{ 0 };
 
   MeshExtraction::SurfaceNet m_Net;
 };

@@ -21,6 +21,7 @@
 #include "itkSurfaceNetsImageToMeshFilter.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
+#include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
@@ -56,6 +57,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
   if (m_GradientMethod == GradientEnum::GaussianDerivative && !(m_GradientSigma > 0.0))
   {
     itkExceptionMacro("GradientSigma must be > 0 mm for Gaussian-derivative gradients, got " << m_GradientSigma << '.');
+  }
+  if (m_HighQuality && m_Triangulation == TriangulationEnum::Quadrilaterals)
+  {
+    itkExceptionMacro("HighQuality swaps edges of triangles: it cannot keep Quadrilaterals.");
   }
   if (!(m_CellMargin >= 0.0 && m_CellMargin <= 0.25))
   {
@@ -155,8 +160,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
-void
-SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(RelaxationEnum relaxation)
+MeshExtraction::SurfaceNetsRelaxationResultSummary
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(RelaxationEnum relaxation,
+                                                                              unsigned int   iterations)
 {
   using namespace MeshExtraction;
   const InputImageType *          input = this->GetInput();
@@ -177,7 +183,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(Re
       p.kind = SurfaceNetsRelaxationKind::Combined;
       break;
   }
-  p.maximumNumberOfIterations = m_MaximumNumberOfIterations;
+  p.maximumNumberOfIterations = iterations;
   p.convergenceThreshold = m_ConvergenceThreshold;
   p.smoothingWeight = m_SmoothingWeight;
   p.projectionWeight = m_ProjectionWeight;
@@ -191,7 +197,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(Re
       p.indexToPhysical[r][c] = input->GetDirection()[r][c] * input->GetSpacing()[c];
     }
   }
-  auto progress = [this](double fraction) { this->UpdateProgress(static_cast<float>(0.3 + 0.5 * fraction)); };
+  const float progressStart = this->GetProgress();
+  const float progressSpan = m_HighQuality ? 0.05f : 0.45f;
+  auto        progress = [this, progressStart, progressSpan](double fraction) {
+    this->UpdateProgress(static_cast<float>(progressStart + progressSpan * fraction));
+  };
 
   const SurfaceNetsSampler<InputImageType> sampler(input, m_IsoValue, m_InsideIsAboveIsoValue ? -1.0 : 1.0);
 
@@ -216,8 +226,45 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(Re
     result = RelaxSurfaceNet(
       m_Net, &sampler, [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); }, p, progress);
   }
-  m_NumberOfIterations = result.iterations;
-  m_LastMaximumRelocation = result.lastMaximumRelocation;
+  return { result.iterations, result.lastMaximumRelocation };
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTriangles(
+  std::vector<MeshExtraction::TriangleIndices> & triangles)
+{
+  using namespace MeshExtraction;
+  Matrix<double, 3, 3> M;
+  Vec3                 first;
+  this->GetGeometry(M, first);
+  SurfaceNetTriangles mesh;
+  mesh.triangles = triangles;
+  mesh.BuildConnectivity(m_Net.positions.size());
+  EdgeSwapParameters swap;
+  swap.criterion = MeshExtractionEnums::EdgeSwapCriterion::Regularity;
+  swap.degenerateQAreaTolerance = 1e-3;
+  const RelaxationEnum relaxation = m_ClassifyByLabel ? RelaxationEnum::Averaging : RelaxationEnum::Combined;
+  m_NumberOfSwaps = 0;
+  m_NumberOfRoundsPerformed = 0;
+  for (unsigned int round = 0; round < m_NumberOfImprovementRounds; ++round)
+  {
+    const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M);
+    auto                    swaps = SwapEdges(physical, mesh, swap);
+    UndoIntersectingSwaps(physical, mesh, swaps);
+    m_NumberOfSwaps += swaps.size();
+    mesh.FillLinks(m_Net);
+    const std::vector<Vec3> start = m_Net.positions;
+    this->RelaxNet(relaxation, m_ImprovementIterations);
+    m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh.triangles, first, M, 1e-3);
+    ++m_NumberOfRoundsPerformed;
+    this->UpdateProgress(0.35f + 0.45f * static_cast<float>(round + 1) / m_NumberOfImprovementRounds);
+    if (swaps.empty())
+    {
+      break;
+    }
+  }
+  triangles = mesh.triangles;
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -261,16 +308,15 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetQuadSpli
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
-SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputMesh()
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputMesh(
+  const std::vector<std::array<std::uint32_t, 4>> & polygons,
+  unsigned int                                      polygonSize)
 {
   using namespace MeshExtraction;
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
-  std::vector<Vec3>                         points;
-  std::vector<std::array<std::uint32_t, 4>> polygons;
-  unsigned int                              polygonSize = 3;
-  MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize);
+  const std::vector<Vec3> points = ToPhysical(m_Net.positions, first, M);
 
   OutputMeshType * output = this->GetOutput();
   output->Initialize();
@@ -355,19 +401,41 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   m_NumberOfSplitCells = m_Net.numberOfSplitCells;
   this->UpdateProgress(0.3f);
   const std::vector<MeshExtraction::Vec3> initial = m_Net.positions;
-  this->RelaxNet(relaxation); // 3
-  this->UpdateProgress(0.75f);
+  const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations); // 3
+  m_NumberOfIterations = relaxed.iterations;
+  m_LastMaximumRelocation = relaxed.lastMaximumRelocation;
+  Matrix<double, 3, 3> M;
+  MeshExtraction::Vec3 first;
+  this->GetGeometry(M, first);
   m_NumberOfNodesMovedBack = 0;
   if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
   {
-    Matrix<double, 3, 3> M;
-    MeshExtraction::Vec3 first;
-    this->GetGeometry(M, first);
     m_NumberOfNodesMovedBack =
       MeshExtraction::RemoveSurfaceNetSelfIntersections(m_Net, initial, first, M, this->GetQuadSplit()); // 3b
   }
+  this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
+
+  std::vector<MeshExtraction::Vec3>         points;
+  std::vector<std::array<std::uint32_t, 4>> polygons;
+  unsigned int                              polygonSize = 3;
+  MeshExtraction::MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize); // 4
+  m_NumberOfSwaps = 0;
+  m_NumberOfRoundsPerformed = 0;
+  if (m_HighQuality)
+  {
+    std::vector<MeshExtraction::TriangleIndices> triangles(polygons.size());
+    for (std::size_t f = 0; f < polygons.size(); ++f)
+    {
+      triangles[f] = { polygons[f][0], polygons[f][1], polygons[f][2] };
+    }
+    this->ImproveTriangles(triangles); // 5
+    for (std::size_t f = 0; f < polygons.size(); ++f)
+    {
+      polygons[f] = { triangles[f][0], triangles[f][1], triangles[f][2], 0 };
+    }
+  }
   this->UpdateProgress(0.85f);
-  this->MakeOutputMesh(); // 4
+  this->MakeOutputMesh(polygons, polygonSize);
   this->UpdateProgress(1.0f);
 }
 
@@ -391,6 +459,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "Triangulation: " << m_Triangulation << '\n';
   os << indent << "CellMargin: " << m_CellMargin << '\n';
   os << indent << "PreventSelfIntersections: " << m_PreventSelfIntersections << '\n';
+  os << indent << "HighQuality: " << m_HighQuality << '\n';
+  os << indent << "NumberOfImprovementRounds: " << m_NumberOfImprovementRounds << '\n';
+  os << indent << "ImprovementIterations: " << m_ImprovementIterations << '\n';
+  os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << '\n';
+  os << indent << "NumberOfRoundsPerformed: " << m_NumberOfRoundsPerformed << '\n';
   os << indent << "NumberOfIterations: " << m_NumberOfIterations << '\n';
   os << indent << "LastMaximumRelocation: " << m_LastMaximumRelocation << '\n';
   os << indent << "NumberOfNodes: " << m_NumberOfNodes << '\n';

@@ -184,10 +184,11 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
-FindSelfIntersections(const IndexedTriangleMesh & mesh)
+FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries)
 {
   const std::size_t          n = mesh.triangles.size();
   std::vector<std::uint32_t> valid;
+  std::vector<bool>          isValid(n, false);
   valid.reserve(n);
   for (std::uint32_t f = 0; f < n; ++f)
   {
@@ -196,21 +197,43 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh)
         !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]))
     {
       valid.push_back(f);
+      isValid[f] = true;
     }
   }
   TriangleAABBTree tree;
   tree.Build(mesh, &valid);
+  std::vector<std::uint32_t> asked;
+  if (queries != nullptr)
+  {
+    for (std::uint32_t f : *queries)
+    {
+      if (f < n && isValid[f])
+      {
+        asked.push_back(f);
+      }
+    }
+    std::sort(asked.begin(), asked.end());
+    asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
+  }
+  const std::vector<std::uint32_t> & probes = queries != nullptr ? asked : valid;
+  std::vector<bool>                  probed(queries != nullptr ? n : 0, false);
+  for (std::uint32_t f : asked)
+  {
+    probed[f] = true;
+  }
   constexpr std::size_t                                             BlockSize = 2048;
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((valid.size() + BlockSize - 1) / BlockSize);
-  ParallelForBlocks(valid.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((probes.size() + BlockSize - 1) / BlockSize);
+  ParallelForBlocks(probes.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      const std::uint32_t f = valid[i];
+      const std::uint32_t f = probes[i];
       const auto &        t = mesh.triangles[f];
       const Vec3          P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
       const IdentifierType pid[3] = { t[0], t[1], t[2] };
       tree.VisitOverlapping(TriangleBox(mesh, f), [&](std::uint32_t g) {
-        if (g <= f)
+        // Each pair once: by index among all, or (with queries) skip pairs of two
+        // probes where g < f, which the probe g reports.
+        if (g == f || (g < f && (queries == nullptr || probed[g])))
         {
           return;
         }
@@ -219,7 +242,7 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh)
         const IdentifierType qid[3] = { s[0], s[1], s[2] };
         if (FacesIntersect(P, pid, Q, qid))
         {
-          found[block].emplace_back(f, g);
+          found[block].emplace_back(std::min(f, g), std::max(f, g));
         }
       });
     }

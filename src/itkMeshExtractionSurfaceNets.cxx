@@ -538,6 +538,7 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
                                   QuadSplit                    split)
 {
   std::vector<bool>                         moved(net.positions.size(), false);
+  std::vector<bool>                         movedLastRound(net.positions.size(), false);
   std::vector<unsigned int>                 pulls(net.positions.size(), 0);
   std::vector<Vec3>                         points;
   std::vector<std::array<std::uint32_t, 4>> polygons;
@@ -557,11 +558,25 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
     {
       mesh.triangles[f] = { polygons[f][0], polygons[f][1], polygons[f][2] };
     }
-    const auto pairs = FindSelfIntersections(mesh);
+    // After the first round only faces at moved nodes can have changed.
+    std::vector<std::uint32_t> changed;
+    if (round > 0)
+    {
+      for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
+      {
+        const auto & t = mesh.triangles[f];
+        if (movedLastRound[t[0]] || movedLastRound[t[1]] || movedLastRound[t[2]])
+        {
+          changed.push_back(f);
+        }
+      }
+    }
+    const auto pairs = FindSelfIntersections(mesh, round > 0 ? &changed : nullptr);
     if (pairs.empty())
     {
       break;
     }
+    std::fill(movedLastRound.begin(), movedLastRound.end(), false);
     if (round == MaximumRounds)
     {
       // Not expected: fall back to the unrelaxed net, which is intersection-free.
@@ -589,6 +604,7 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
     for (std::uint32_t v : nodes)
     {
       moved[v] = true;
+      movedLastRound[v] = true;
       if (++pulls[v] > HalvingsBeforeReset)
       {
         net.positions[v] = initial[v];

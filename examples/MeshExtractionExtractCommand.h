@@ -1,0 +1,347 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef MeshExtractionExtractCommand_h
+#define MeshExtractionExtractCommand_h
+
+#include "MeshExtractionCommandHelpers.h"
+#include "MeshExtractionQualityCommand.h"
+#include "itkImplicitSurfaceImageSource.h"
+#include "itkSurfaceNetsImageToMeshFilter.h"
+
+#include <fstream>
+
+namespace MeshExtractionCLI
+{
+// ------------------------------------------------------------------------------
+// extract
+// ------------------------------------------------------------------------------
+using SurfaceNetsEnums = itk::SurfaceNetsImageToMeshFilterEnums;
+using ExtractMeshType = itk::QuadEdgeMesh<double, 3>;
+
+/** The parts of the extract options that do not depend on the pixel type. */
+struct ExtractSettings
+{
+  double                          isoValue{ 0.0 };
+  bool                            insideAbove{ true };
+  bool                            byLabel{ false };
+  double                          label{ 1.0 };
+  std::string                     labelImage;
+  SurfaceNetsEnums::Relaxation    relaxation{ SurfaceNetsEnums::Relaxation::Automatic };
+  unsigned int                    iterations{ 20 };
+  SurfaceNetsEnums::Triangulation triangulation{ SurfaceNetsEnums::Triangulation::ShortestDiagonal };
+  SurfaceNetsEnums::Gradient      gradient{ SurfaceNetsEnums::Gradient::CentralDifference };
+  double                          sigma{ 1.0 };
+  unsigned int                    threads{ 0 };
+  bool                            highQuality{ false };
+  unsigned int                    rounds{ 8 };
+};
+
+inline SurfaceNetsEnums::Relaxation
+RelaxationFromName(const std::string & name)
+{
+  if (name == "auto")
+  {
+    return SurfaceNetsEnums::Relaxation::Automatic;
+  }
+  if (name == "none")
+  {
+    return SurfaceNetsEnums::Relaxation::None;
+  }
+  if (name == "sna" || name == "averaging")
+  {
+    return SurfaceNetsEnums::Relaxation::Averaging;
+  }
+  if (name == "gradient")
+  {
+    return SurfaceNetsEnums::Relaxation::Gradient;
+  }
+  if (name == "snert" || name == "combined")
+  {
+    return SurfaceNetsEnums::Relaxation::Combined;
+  }
+  throw UsageError("--relaxation must be auto, none, sna, gradient or snert, got '" + name + "'");
+}
+
+template <typename TImage>
+ExtractMeshType::Pointer
+RunSurfaceNets(const TImage * image, const ExtractSettings & s)
+{
+  using FilterType = itk::SurfaceNetsImageToMeshFilter<TImage, ExtractMeshType>;
+  auto filter = FilterType::New();
+  filter->SetInput(image);
+  filter->SetIsoValue(s.isoValue);
+  filter->SetInsideIsAboveIsoValue(s.insideAbove);
+  filter->SetClassifyByLabel(s.byLabel && s.labelImage.empty());
+  filter->SetLabelValue(s.label);
+  filter->SetRelaxation(s.relaxation);
+  filter->SetMaximumNumberOfIterations(s.iterations);
+  filter->SetTriangulation(s.triangulation);
+  filter->SetGradientMethod(s.gradient);
+  filter->SetGradientSigma(s.sigma);
+  filter->SetHighQuality(s.highQuality);
+  filter->SetNumberOfImprovementRounds(s.rounds);
+  if (s.threads > 0)
+  {
+    filter->SetNumberOfWorkUnits(s.threads);
+  }
+  typename FilterType::LabelImageType::Pointer labels;
+  if (!s.labelImage.empty())
+  {
+    labels = ReadImageFile<typename FilterType::LabelImageType>(s.labelImage);
+    filter->SetLabelImage(labels);
+  }
+  ReportProgress(filter.GetPointer(), "SurfaceNets");
+  Stopwatch watch;
+  filter->Update();
+  std::cerr << "  " << filter->GetNumberOfNodes() << " nodes (" << filter->GetNumberOfSplitCells()
+            << " split cells), " << filter->GetNumberOfIterations() << " relaxation iterations (last largest move "
+            << filter->GetLastMaximumRelocation() << " voxel), " << filter->GetNumberOfNodesMovedBack()
+            << " nodes moved back";
+  if (s.highQuality)
+  {
+    std::cerr << ", " << filter->GetNumberOfSwaps() << " swaps in " << filter->GetNumberOfRoundsPerformed()
+              << " rounds";
+  }
+  std::cerr << ", " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n"
+            << std::defaultfloat;
+  ExtractMeshType::Pointer mesh = filter->GetOutput();
+  mesh->DisconnectPipeline();
+  return mesh;
+}
+
+/** Reads INPUT with its own pixel type and extracts. */
+inline ExtractMeshType::Pointer
+ExtractFromFile(const std::string & path, const ExtractSettings & s)
+{
+  auto io = ReadImageInformation(path);
+  if (io->GetNumberOfDimensions() != 3)
+  {
+    itkGenericExceptionMacro("'" << path << "' is a " << io->GetNumberOfDimensions()
+                                 << "-D image; SurfaceNets needs a 3-D image");
+  }
+  if (io->GetNumberOfComponents() != 1)
+  {
+    itkGenericExceptionMacro("'" << path << "' has " << io->GetNumberOfComponents()
+                                 << " components per voxel; SurfaceNets needs a scalar image");
+  }
+  using IOComponent = itk::IOComponentEnum;
+  switch (io->GetComponentType())
+  {
+    case IOComponent::UCHAR:
+      return RunSurfaceNets(ReadImageFile<itk::Image<unsigned char, 3>>(path).GetPointer(), s);
+    case IOComponent::CHAR:
+      return RunSurfaceNets(ReadImageFile<itk::Image<signed char, 3>>(path).GetPointer(), s);
+    case IOComponent::USHORT:
+      return RunSurfaceNets(ReadImageFile<itk::Image<unsigned short, 3>>(path).GetPointer(), s);
+    case IOComponent::SHORT:
+      return RunSurfaceNets(ReadImageFile<itk::Image<short, 3>>(path).GetPointer(), s);
+    case IOComponent::UINT:
+    case IOComponent::INT:
+    case IOComponent::ULONG:
+    case IOComponent::LONG:
+    case IOComponent::ULONGLONG:
+    case IOComponent::LONGLONG:
+    case IOComponent::DOUBLE:
+      return RunSurfaceNets(ReadImageFile<itk::Image<double, 3>>(path).GetPointer(), s);
+    default:
+      return RunSurfaceNets(ReadImageFile<itk::Image<float, 3>>(path).GetPointer(), s);
+  }
+}
+
+inline int
+RunExtract(const Arguments & args)
+{
+  ExtractSettings s;
+  const bool      fromPhantom = args.Has("phantom");
+  if (fromPhantom == (args.positional.size() == 2))
+  {
+    throw UsageError(fromPhantom ? "with --phantom give only OUTPUT" : "'extract' expects INPUT and OUTPUT");
+  }
+  const std::string output = args.positional.back();
+  s.byLabel = args.Has("label");
+  s.label = args.GetDouble("label", 1.0);
+  s.labelImage = args.Get("labels");
+  if (!fromPhantom && !args.Has("iso") && !s.byLabel)
+  {
+    throw UsageError("give the iso-value (--iso V) or the object's label (--label L)");
+  }
+  if (args.Has("labels") && !args.Has("iso"))
+  {
+    throw UsageError("--labels relaxes a segmentation toward the iso-surface of INPUT: give --iso too");
+  }
+  s.isoValue = args.GetDouble("iso", 0.0);
+  const std::string inside = args.Get("inside", "above");
+  if (inside != "above" && inside != "below")
+  {
+    throw UsageError("--inside must be above or below, got '" + inside + "'");
+  }
+  s.insideAbove = inside == "above";
+  s.relaxation = RelaxationFromName(args.Get("relaxation", "auto"));
+  const long iterations = args.GetInteger("iterations", 20);
+  if (iterations < 0)
+  {
+    throw UsageError("--iterations must be >= 0");
+  }
+  s.iterations = static_cast<unsigned int>(iterations);
+  const std::string triangulation = args.Get("triangulation", "shortest");
+  if (triangulation == "shortest")
+  {
+    s.triangulation = SurfaceNetsEnums::Triangulation::ShortestDiagonal;
+  }
+  else if (triangulation == "delaunay")
+  {
+    s.triangulation = SurfaceNetsEnums::Triangulation::Delaunay;
+  }
+  else if (triangulation == "quads")
+  {
+    s.triangulation = SurfaceNetsEnums::Triangulation::Quadrilaterals;
+  }
+  else
+  {
+    throw UsageError("--triangulation must be shortest, delaunay or quads, got '" + triangulation + "'");
+  }
+  if (args.Has("sigma"))
+  {
+    s.gradient = SurfaceNetsEnums::Gradient::GaussianDerivative;
+    s.sigma = args.GetDouble("sigma", 1.0);
+  }
+  const std::string qualityMode = args.Get("quality", "standard");
+  if (qualityMode != "standard" && qualityMode != "high")
+  {
+    throw UsageError("--quality must be standard or high, got '" + qualityMode + "'");
+  }
+  s.highQuality = qualityMode == "high";
+  const long rounds = args.GetInteger("rounds", 8);
+  if (rounds < 0)
+  {
+    throw UsageError("--rounds must be >= 0");
+  }
+  s.rounds = static_cast<unsigned int>(rounds);
+  const long threads = args.GetInteger("threads", 0);
+  if (threads < 0)
+  {
+    throw UsageError("--threads must be >= 0");
+  }
+  s.threads = static_cast<unsigned int>(threads);
+
+  ExtractMeshType::Pointer              mesh;
+  itk::ImplicitSurfaceFunction::Pointer exact;
+  if (fromPhantom)
+  {
+    const ME::PhantomShape shape = ShapeFromName(args.Get("phantom"));
+    const ME::PhantomGrid  grid = GridFromArguments(shape, args);
+    const auto             parameters = ME::DefaultPhantomImageParameters(shape);
+    if (!args.Has("iso"))
+    {
+      // Distance maps: the zero level, inside negative; blurred steps: half-way.
+      const bool step = parameters.mode == itk::MeshExtractionEnums::PhantomImage::BlurredStep;
+      s.isoValue = step ? 0.5 * (parameters.insideValue + parameters.outsideValue) : 0.0;
+      s.insideAbove = step;
+    }
+    std::cerr << "extract: phantom " << ME::PhantomShapeName(shape) << " (" << grid.size << " voxels)\n";
+    auto source = ME::MakePhantomImageSource<itk::Image<float, 3>>(shape, grid, parameters);
+    source->Update();
+    mesh = RunSurfaceNets(source->GetOutput(), s);
+    exact = ME::MakePhantomSurface(shape, grid);
+  }
+  else
+  {
+    std::cerr << "extract: " << args.positional[0] << '\n';
+    mesh = ExtractFromFile(args.positional[0], s);
+  }
+  WriteMeshFile(mesh.GetPointer(), output);
+  std::cerr << "  wrote " << output << " (" << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces()
+            << " faces)\n";
+
+  if (args.Has("report") || args.Has("report-json"))
+  {
+    auto quality = itk::TriangleMeshQualityCalculator<ExtractMeshType>::New();
+    quality->SetMesh(mesh);
+    quality->Compute();
+    MeasuredMesh measured;
+    measured.name = output;
+    measured.quality = quality->GetReport();
+    if (exact)
+    {
+      auto distance = itk::MeshSurfaceDistanceCalculator<ExtractMeshType>::New();
+      distance->SetMesh(mesh);
+      distance->SetReferenceSurface(exact);
+      distance->Compute();
+      measured.hasDistance = true;
+      measured.distance = distance->GetReport();
+    }
+    if (args.Has("report"))
+    {
+      measured.quality.Print(std::cout, output);
+      if (measured.hasDistance)
+      {
+        measured.distance.Print(std::cout);
+      }
+    }
+    if (args.Has("report-json"))
+    {
+      WriteJSON({ measured }, args.Get("report-json"));
+    }
+  }
+  return 0;
+}
+
+inline Command
+MakeExtractCommand()
+{
+  Command c;
+  c.name = "extract";
+  c.summary = "extract a surface mesh with SurfaceNets (SNA, SNERT)";
+  c.usage = "INPUT OUTPUT [options]   |   meshextraction extract --phantom NAME OUTPUT [options]";
+  c.description =
+    "Extracts a closed, 2-manifold, outward-oriented triangle mesh from a 3-D image (any format ITK\n"
+    "reads, or a DICOM series directory) with SurfaceNets (thesis chapter 3) and writes it in the\n"
+    "format OUTPUT's extension names (.vtk, .obj, .off, .gii, .byu). The object is the voxels\n"
+    "above (or below) --iso; or the voxels equal to --label in a label image; or a segmentation\n"
+    "(--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface. SNERT (the\n"
+    "default for greyscale input) puts the nodes on the trilinear iso-surface and spaces them out;\n"
+    "SNA only averages. Coordinates are physical (spacing, origin, direction).";
+  c.options = {
+    { "iso", "V", "iso-value of the object's boundary", "0 for a phantom" },
+    { "inside", "above|below", "which side of --iso is the object", "above" },
+    { "label", "L", "the object is the voxels equal to L (INPUT or --labels is a label image)", "1" },
+    { "labels", "FILE", "segmentation whose --label voxels give the net, relaxed toward INPUT's iso-surface", "" },
+    { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
+    { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
+    { "iterations", "N", "maximum relaxation iterations", "20" },
+    { "triangulation", "MODE", "shortest, delaunay or quads", "shortest" },
+    { "sigma", "MM", "Gaussian-derivative gradients of this scale instead of central differences", "" },
+    { "quality", "standard|high", "high: alternate regularity edge swaps with SNERT on the triangles", "standard" },
+    { "rounds", "N", "rounds of swaps and relaxation for --quality high", "8" },
+    { "threads", "N", "work units (0: all cores)", "0" },
+    { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
+    { "report-json", "FILE", "write the report as JSON", "" },
+  };
+  for (const auto & o : GridOptions())
+  {
+    c.options.push_back(o);
+  }
+  c.minimumPositional = 1;
+  c.maximumPositional = 2;
+  c.run = RunExtract;
+  return c;
+}
+
+} // namespace MeshExtractionCLI
+
+#endif

@@ -1,0 +1,94 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkMeshExtractionSurfaceNetsImprovement_h
+#define itkMeshExtractionSurfaceNetsImprovement_h
+
+#include "MeshExtractionExport.h"
+#include "itkMeshExtractionEdgeSwapCriteria.h"
+#include "itkMeshExtractionSurfaceNets.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+/** \brief The triangles of a SurfaceNet with the twin of every half-edge, for edge
+ * swapping. Half-edge 3f + k runs from triangles[f][k] to triangles[f][k+1]; the
+ * surface is closed, so every half-edge has a twin.
+ * \ingroup MeshExtraction */
+struct MeshExtraction_EXPORT SurfaceNetTriangles
+{
+  std::vector<TriangleIndices> triangles;
+  std::vector<std::uint32_t>   twin;
+  std::vector<std::uint32_t>   valence;
+
+  /** Twins and valences from the triangles (throws if the surface is not closed and manifold). */
+  void
+  BuildConnectivity(std::size_t numberOfPoints);
+  /** True if the vertices u and v share an edge (walks the fan of u). */
+  bool
+  HasEdge(std::uint32_t u, std::uint32_t v, std::uint32_t halfEdgeFromU) const;
+  /** The net's links (neighbour lists) from the triangles' edges. */
+  void
+  FillLinks(SurfaceNet & net) const;
+};
+
+/** The two triangles an edge swap replaced, to undo it. */
+struct EdgeSwapRecord
+{
+  std::uint32_t   first;
+  std::uint32_t   second;
+  TriangleIndices oldFirst;
+  TriangleIndices oldSecond;
+};
+
+/** One sweep of edge swaps over all edges, in index order, that EvaluateEdgeSwap()
+ * accepts (thesis 2.2.6 and 4.5.1; the decision EdgeSwapQuadEdgeMeshFilter uses).
+ * A triangle takes part in at most one swap per sweep, so each swap can be undone
+ * on its own. `physical` are the node positions in millimetres. */
+MeshExtraction_EXPORT std::vector<EdgeSwapRecord>
+SwapEdges(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, const EdgeSwapParameters & parameters);
+
+/** Undo swaps whose triangles intersect other triangles, until none does. Returns
+ * the number of swaps undone. */
+MeshExtraction_EXPORT std::size_t
+UndoIntersectingSwaps(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, std::vector<EdgeSwapRecord> & swaps);
+
+/** After nodes moved from `start` to `positions` (continuous index), pull back the
+ * nodes of triangles that flipped against their orientation at `start`, became
+ * degenerate (q_area <= tolerance, measured in millimetres), or intersect another
+ * triangle: halve their move, then reset it, until no such triangle is left.
+ * Returns the number of nodes pulled back. */
+MeshExtraction_EXPORT std::size_t
+PullBackInvalidMoves(std::vector<Vec3> &                 positions,
+                     const std::vector<Vec3> &           start,
+                     const std::vector<TriangleIndices> & triangles,
+                     const Vec3 &                        origin,
+                     const Matrix<double, 3, 3> &        indexToPhysical,
+                     double                              degenerateQAreaTolerance);
+
+/** Node positions in physical space: origin + matrix * index. */
+MeshExtraction_EXPORT std::vector<Vec3>
+ToPhysical(const std::vector<Vec3> & index, const Vec3 & origin, const Matrix<double, 3, 3> & indexToPhysical);
+
+} // namespace MeshExtraction
+} // namespace itk
+
+#endif
