@@ -400,6 +400,19 @@ SegmentIntersectsTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & p, const 
 bool
 TrianglesIntersect(const Vec3 P[3], const Vec3 Q[3])
 {
+  // Separated by the plane of either triangle: no common point.
+  for (unsigned int pass = 0; pass < 2; ++pass)
+  {
+    const Vec3 * A = pass == 0 ? P : Q;
+    const Vec3 * B = pass == 0 ? Q : P;
+    const int    s0 = Orient3D(A[0], A[1], A[2], B[0]);
+    const int    s1 = Orient3D(A[0], A[1], A[2], B[1]);
+    const int    s2 = Orient3D(A[0], A[1], A[2], B[2]);
+    if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))
+    {
+      return false;
+    }
+  }
   // If two closed triangles meet, an end of their (convex) intersection lies on an
   // edge of one of them, so six segment tests decide it.
   for (unsigned int i = 0; i < 3; ++i)
@@ -490,6 +503,19 @@ FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], co
   const Vec3 &       b = P[(pi + 2) % 3];
   const Vec3 &       c = Q[(qi + 1) % 3];
   const Vec3 &       d = Q[(qi + 2) % 3];
+  // Either face strictly on one side of the other's plane (but for v): only v is common.
+  const int oc = Orient3D(v, a, b, c);
+  const int od = Orient3D(v, a, b, d);
+  if (oc != 0 && oc == od)
+  {
+    return false;
+  }
+  const int oa = Orient3D(v, c, d, a);
+  const int ob = Orient3D(v, c, d, b);
+  if (oa != 0 && oa == ob)
+  {
+    return false;
+  }
   return SegmentIntersectsTriangle(a, b, v, c, d) || SegmentIntersectsTriangle(c, d, v, a, b) ||
          EdgeEntersFaceAtSharedVertex(v, a, c, d) || EdgeEntersFaceAtSharedVertex(v, b, c, d) ||
          EdgeEntersFaceAtSharedVertex(v, c, a, b) || EdgeEntersFaceAtSharedVertex(v, d, a, b);

@@ -600,3 +600,100 @@ TEST(SurfaceNetsImageToMeshFilter, BadInputRaisesClearExceptions)
   labels->Update();
   EXPECT_TRUE(Measure(labels->GetOutput()).IsValidClosedSurface());
 }
+
+namespace
+{
+QEMeshType::Pointer
+ExtractHighQuality(const FloatImage * image, itk::SizeValueType * swaps = nullptr)
+{
+  auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+  filter->SetInput(image);
+  filter->SetInsideIsAboveIsoValue(false);
+  filter->SetHighQuality(true);
+  filter->Update();
+  if (swaps)
+  {
+    *swaps = filter->GetNumberOfSwaps();
+  }
+  return filter->GetOutput();
+}
+} // namespace
+
+TEST(SurfaceNetsImageToMeshFilter, HighQualitySphereIsNearlyEquilateralAndStillAccurate)
+{
+  const Phantom      p = MakePhantom(ME::PhantomShape::Sphere); // radius 19.2 voxels
+  itk::SizeValueType swaps = 0;
+  auto               mesh = ExtractHighQuality(p.image.GetPointer(), &swaps);
+  const auto         q = Measure(mesh.GetPointer());
+  EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+  EXPECT_EQ(q.eulerCharacteristic, 2);
+  EXPECT_GT(swaps, 0u);
+  EXPECT_GE(q.qArea.mean, 0.97);
+  EXPECT_GE(q.qAngle.mean, 0.80);
+  EXPECT_LE(q.fractionQAngleBelow03, 1e-4); // the issue allows 0.1 %; measured: none
+  EXPECT_GE(q.fractionValence6, 0.90);
+  const auto d = Distance(mesh.GetPointer(), p.surface);
+  EXPECT_LE(d.vertices.mean, 0.02);
+  EXPECT_LT(d.vertices.maximum, 0.05);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, HighQualityBeatsSnertOnCreasesAndHandlesKeepingTopology)
+{
+  for (auto shape : { ME::PhantomShape::TwoSpheres, ME::PhantomShape::Torus })
+  {
+    SCOPED_TRACE(ME::PhantomShapeName(shape));
+    const Phantom p = MakePhantom(shape);
+    const auto    plain = Measure(Extract(p.image.GetPointer(), 0.0, false).GetPointer());
+    auto          mesh = ExtractHighQuality(p.image.GetPointer());
+    const auto    q = Measure(mesh.GetPointer());
+    EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+    EXPECT_EQ(q.eulerCharacteristic, plain.eulerCharacteristic);
+    EXPECT_EQ(q.connectedComponents, plain.connectedComponents);
+    EXPECT_GT(q.qAngle.mean, plain.qAngle.mean + 0.12);
+    EXPECT_GT(q.qArea.mean, plain.qArea.mean + 0.04);
+    EXPECT_LT(q.fractionQAngleBelow03, plain.fractionQAngleBelow03 + 1e-12);
+    // Every node, crease nodes included, is still on the surface.
+    const auto d = Distance(mesh.GetPointer(), p.surface);
+    EXPECT_LE(d.vertices.mean, 0.02);
+    EXPECT_LT(d.vertices.maximum, 0.35);
+  }
+}
+
+TEST(SurfaceNetsImageToMeshFilter, HighQualityHoldsInPhysicalSpaceOnAnisotropicVoxels)
+{
+  ME::PhantomGrid grid = ME::DefaultPhantomGrid(ME::PhantomShape::Sphere);
+  // Anisotropy of 1.1/0.9; beyond about 1.2 one node per cell cannot be spaced
+  // evenly in physical space (documented in the filter).
+  grid.size[0] = 72;
+  grid.size[1] = 64;
+  grid.size[2] = 58;
+  grid.spacing[0] = 0.9;
+  grid.spacing[1] = 1.0;
+  grid.spacing[2] = 1.1;
+  const Phantom p = MakePhantom(ME::PhantomShape::Sphere, grid);
+  auto          mesh = ExtractHighQuality(p.image.GetPointer());
+  const auto    q = Measure(mesh.GetPointer());
+  EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+  EXPECT_GE(q.qArea.mean, 0.97);
+  EXPECT_GE(q.qAngle.mean, 0.80);
+  EXPECT_LE(q.fractionQAngleBelow03, 0.001);
+  EXPECT_LE(Distance(mesh.GetPointer(), p.surface).vertices.mean, 0.02); // mm
+}
+
+TEST(SurfaceNetsImageToMeshFilter, HighQualityIsIdenticalForOneAndManyThreads)
+{
+  const Phantom p = MakePhantom(ME::PhantomShape::Ellipsoid);
+  auto          run = [&p](unsigned int workUnits) {
+    auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage, MeshType>::New();
+    filter->SetInput(p.image);
+    filter->SetInsideIsAboveIsoValue(false);
+    filter->SetHighQuality(true);
+    filter->SetNumberOfWorkUnits(workUnits);
+    filter->Update();
+    return ME::MakeIndexedTriangleMesh(*filter->GetOutput());
+  };
+  const auto one = run(1);
+  const auto many = run(5);
+  EXPECT_EQ(one.triangles, many.triangles);
+  EXPECT_EQ(one.points, many.points);
+}
