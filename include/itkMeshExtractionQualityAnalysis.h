@@ -171,6 +171,15 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
 MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
 FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries = nullptr);
 
+class TriangleAABBTree;
+/** The same, with a tree built by the caller over all triangles with boxes that
+ * contain the triangles' current positions (see TriangleAABBTree::Build): repeated
+ * checks while vertices move inside those boxes need no rebuild. */
+MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
+FindSelfIntersections(const IndexedTriangleMesh &        mesh,
+                      const std::vector<std::uint32_t> & queries,
+                      const TriangleAABBTree &           tree);
+
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -153,19 +153,29 @@ MakeSurfaceNetFaces(const SurfaceNet &                     net,
                     std::vector<std::array<std::uint32_t, 4>> & polygons,
                     unsigned int &                         polygonSize);
 
+/** Node positions in physical space: origin + matrix * index, rounded to float when
+ * the output mesh stores float coordinates (so that checks see what is written). */
+MeshExtraction_EXPORT std::vector<Vec3>
+ToPhysical(const std::vector<Vec3> &    index,
+           const Vec3 &                 origin,
+           const Matrix<double, 3, 3> & indexToPhysical,
+           bool                         roundToFloat = false);
+
 /** Stage 3b of SurfaceNets: where relaxed faces cross each other (two sheets
  * pulled toward one iso-surface, e.g. where the object touches itself), move the
  * nodes of the crossing faces back toward `initial` (halving their relocation,
  * then resetting it) until no two faces intersect. The unrelaxed net (nodes at
  * cell centres and sheet centres) is free of intersections, so this ends with an
  * intersection-free net. Intersections are found with the exact test of
- * TriangleMeshQualityCalculator. Returns the number of nodes moved back. */
+ * TriangleMeshQualityCalculator on the physical positions that will be written
+ * (rounded to float with `roundToFloat`). Returns the number of nodes moved back. */
 MeshExtraction_EXPORT std::size_t
 RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
                                   const std::vector<Vec3> &    initial,
                                   const Vec3 &                 origin,
                                   const Matrix<double, 3, 3> & indexToPhysical,
-                                  QuadSplit                    split);
+                                  QuadSplit                    split,
+                                  bool                         roundToFloat = false);
 
 } // namespace MeshExtraction
 } // namespace itk

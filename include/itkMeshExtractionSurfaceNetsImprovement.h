@@ -22,6 +22,7 @@
 #include "itkMeshExtractionEdgeSwapCriteria.h"
 #include "itkMeshExtractionSurfaceNets.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -64,29 +65,46 @@ struct EdgeSwapRecord
  * A triangle takes part in at most one swap per sweep, so each swap can be undone
  * on its own. `physical` are the node positions in millimetres. */
 MeshExtraction_EXPORT std::vector<EdgeSwapRecord>
-SwapEdges(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, const EdgeSwapParameters & parameters);
+SwapEdges(const std::vector<Vec3> &          physical,
+          SurfaceNetTriangles &              mesh,
+          const EdgeSwapParameters &         parameters,
+          const std::vector<std::uint64_t> * refused = nullptr);
 
-/** Undo swaps whose triangles intersect other triangles, until none does. Returns
- * the number of swaps undone. */
+/** Key of the undirected edge (u, v), for the sorted list of refused edges. */
+inline std::uint64_t
+EdgeKey(std::uint32_t u, std::uint32_t v)
+{
+  return (static_cast<std::uint64_t>(std::min(u, v)) << 32) | std::max(u, v);
+}
+
+/** A fold: two triangles sharing an edge whose normals make more than 120 degrees.
+ * Neither needs to have flipped on its own, yet the surface doubles back. */
+constexpr double FoldCosine = -0.5;
+
+/** Undo swaps whose triangles intersect other triangles or fold against a
+ * neighbour, until none does; their edges are added to `refused` (kept sorted) so
+ * later sweeps do not try them again. Returns the number of swaps undone. */
 MeshExtraction_EXPORT std::size_t
-UndoIntersectingSwaps(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, std::vector<EdgeSwapRecord> & swaps);
+UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
+                      SurfaceNetTriangles &         mesh,
+                      std::vector<EdgeSwapRecord> & swaps,
+                      std::vector<std::uint64_t> *  refused = nullptr);
 
 /** After nodes moved from `start` to `positions` (continuous index), pull back the
  * nodes of triangles that flipped against their orientation at `start`, became
- * degenerate (q_area <= tolerance, measured in millimetres), or intersect another
- * triangle: halve their move, then reset it, until no such triangle is left.
- * Returns the number of nodes pulled back. */
+ * degenerate (q_area <= tolerance, measured in millimetres), fold against a
+ * neighbour where they did not at `start`, or intersect another triangle: halve
+ * their move once, then reset it, until no such triangle is left. Checks run on the
+ * physical positions that will be written (`roundToFloat`). Returns the number of
+ * nodes pulled back. */
 MeshExtraction_EXPORT std::size_t
-PullBackInvalidMoves(std::vector<Vec3> &                 positions,
-                     const std::vector<Vec3> &           start,
-                     const std::vector<TriangleIndices> & triangles,
-                     const Vec3 &                        origin,
-                     const Matrix<double, 3, 3> &        indexToPhysical,
-                     double                              degenerateQAreaTolerance);
-
-/** Node positions in physical space: origin + matrix * index. */
-MeshExtraction_EXPORT std::vector<Vec3>
-ToPhysical(const std::vector<Vec3> & index, const Vec3 & origin, const Matrix<double, 3, 3> & indexToPhysical);
+PullBackInvalidMoves(std::vector<Vec3> &          positions,
+                     const std::vector<Vec3> &    start,
+                     const SurfaceNetTriangles &  mesh,
+                     const Vec3 &                 origin,
+                     const Matrix<double, 3, 3> & indexToPhysical,
+                     double                       degenerateQAreaTolerance,
+                     bool                         roundToFloat = false);
 
 } // namespace MeshExtraction
 } // namespace itk

@@ -138,9 +138,15 @@ public:
 
   TriangleAABBTree() = default;
 
-  /** Build over all triangles, or over `subset` (triangle indices) if given. */
+  /** Build over all triangles, or over `subset` (triangle indices) if given. With
+   * `boxes` (one per triangle of the mesh), those boxes are stored instead of the
+   * triangles' own: boxes that enclose a triangle over a range of positions give a
+   * tree that stays valid while its vertices move within that range (overlap
+   * queries only; FindNearest needs exact boxes). */
   void
-  Build(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * subset = nullptr);
+  Build(const IndexedTriangleMesh &         mesh,
+        const std::vector<std::uint32_t> *  subset = nullptr,
+        const std::vector<AxisAlignedBox> * boxes = nullptr);
 
   bool
   IsEmpty() const

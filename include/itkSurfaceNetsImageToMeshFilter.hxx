@@ -249,6 +249,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   swap.criterion = MeshExtractionEnums::EdgeSwapCriterion::Regularity;
   swap.degenerateQAreaTolerance = 1e-3;
   const RelaxationEnum relaxation = m_ClassifyByLabel ? RelaxationEnum::Averaging : RelaxationEnum::Combined;
+  const bool           roundToFloat = std::is_same<typename OutputMeshType::PointType::ValueType, float>::value;
   // Swaps and the checks below keep the mesh valid, so a node may now leave its
   // cell by a fraction of a voxel: it reaches the iso-surface near cell corners and
   // spaces out better (nodes fixed in split cells stay fixed).
@@ -265,16 +266,38 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   }
   m_NumberOfSwaps = 0;
   m_NumberOfRoundsPerformed = 0;
-  for (unsigned int round = 0; round < m_NumberOfImprovementRounds; ++round)
-  {
-    const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M);
-    auto                    swaps = SwapEdges(physical, mesh, swap);
-    UndoIntersectingSwaps(physical, mesh, swaps);
-    m_NumberOfSwaps += swaps.size();
+  std::vector<std::uint64_t> refused; // edges whose swap had to be undone
+  // Relax, then undo moves that would break the mesh. A node pulled back is held
+  // still in later rounds: it is where the mesh is tight (thin or sharp parts).
+  auto relaxAndCheck = [&]() {
     mesh.FillLinks(m_Net);
     const std::vector<Vec3> start = m_Net.positions;
     this->RelaxNet(relaxation, m_ImprovementIterations);
-    m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh.triangles, first, M, 1e-3);
+    for (std::size_t i = 0; i < start.size(); ++i)
+    {
+      if (SquaredNorm(m_Net.positions[i] - start[i]) < 1e-10)
+      {
+        m_Net.positions[i] = start[i]; // settled: leave it, and its faces, unchanged
+      }
+    }
+    const std::vector<Vec3> before = m_Net.positions;
+    m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat);
+    for (std::size_t i = 0; i < start.size(); ++i)
+    {
+      if (m_Net.positions[i] != before[i])
+      {
+        m_Net.boxLower[i] = m_Net.positions[i];
+        m_Net.boxUpper[i] = m_Net.positions[i];
+      }
+    }
+  };
+  for (unsigned int round = 0; round < m_NumberOfImprovementRounds; ++round)
+  {
+    const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
+    auto                    swaps = SwapEdges(physical, mesh, swap, &refused);
+    UndoIntersectingSwaps(physical, mesh, swaps, &refused);
+    m_NumberOfSwaps += swaps.size();
+    relaxAndCheck();
     ++m_NumberOfRoundsPerformed;
     this->UpdateProgress(0.35f + 0.45f * static_cast<float>(round + 1) / m_NumberOfImprovementRounds);
     if (swaps.empty())
@@ -282,27 +305,22 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
       break;
     }
   }
-  // A last Delaunay pass: slivers that the cell constraint pinned get the diagonal
-  // that maximises their smallest angle.
+  // A last Delaunay pass: slivers that the constraint pinned get the diagonal that
+  // maximises their smallest angle.
+  EdgeSwapParameters delaunay = swap;
+  delaunay.criterion = MeshExtractionEnums::EdgeSwapCriterion::Delaunay;
+  for (unsigned int sweep = 0; sweep < 2; ++sweep)
   {
-    EdgeSwapParameters delaunay = swap;
-    delaunay.criterion = MeshExtractionEnums::EdgeSwapCriterion::Delaunay;
-    for (unsigned int sweep = 0; sweep < 2; ++sweep)
+    const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
+    auto                    swaps = SwapEdges(physical, mesh, delaunay, &refused);
+    UndoIntersectingSwaps(physical, mesh, swaps, &refused);
+    m_NumberOfSwaps += swaps.size();
+    if (swaps.empty())
     {
-      const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M);
-      auto                    swaps = SwapEdges(physical, mesh, delaunay);
-      UndoIntersectingSwaps(physical, mesh, swaps);
-      m_NumberOfSwaps += swaps.size();
-      if (swaps.empty())
-      {
-        break;
-      }
+      break;
     }
-    mesh.FillLinks(m_Net);
-    const std::vector<Vec3> start = m_Net.positions;
-    this->RelaxNet(relaxation, m_ImprovementIterations);
-    m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh.triangles, first, M, 1e-3);
   }
+  relaxAndCheck();
   triangles = mesh.triangles;
 }
 
@@ -450,7 +468,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
   {
     m_NumberOfNodesMovedBack =
-      MeshExtraction::RemoveSurfaceNetSelfIntersections(m_Net, initial, first, M, this->GetQuadSplit()); // 3b
+      MeshExtraction::RemoveSurfaceNetSelfIntersections(
+        m_Net, initial, first, M, this->GetQuadSplit(), std::is_same<typename OutputMeshType::PointType::ValueType, float>::value); // 3b
   }
   this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
 

@@ -256,6 +256,65 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   return pairs;
 }
 
+std::vector<std::pair<std::uint32_t, std::uint32_t>>
+FindSelfIntersections(const IndexedTriangleMesh &        mesh,
+                      const std::vector<std::uint32_t> & queries,
+                      const TriangleAABBTree &           tree)
+{
+  const std::size_t n = mesh.triangles.size();
+  auto              valid = [&mesh](std::uint32_t f) {
+    const auto & t = mesh.triangles[f];
+    return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
+           !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+  };
+  std::vector<std::uint32_t> probes;
+  std::vector<bool>          probed(n, false);
+  for (std::uint32_t f : queries)
+  {
+    if (f < n && !probed[f] && valid(f))
+    {
+      probed[f] = true;
+      probes.push_back(f);
+    }
+  }
+  std::sort(probes.begin(), probes.end());
+  constexpr std::size_t                                             BlockSize = 2048;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((probes.size() + BlockSize - 1) / BlockSize);
+  ParallelForBlocks(probes.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const std::uint32_t  f = probes[i];
+      const auto &         t = mesh.triangles[f];
+      const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+      const IdentifierType pid[3] = { t[0], t[1], t[2] };
+      tree.VisitOverlapping(TriangleBox(mesh, f), [&](std::uint32_t g) {
+        if (g == f || (g < f && probed[g]))
+        {
+          return;
+        }
+        const auto &         s = mesh.triangles[g];
+        const Vec3           Q[3] = { mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]] };
+        const IdentifierType qid[3] = { s[0], s[1], s[2] };
+        if (!(TriangleBox(mesh, g).Overlaps(TriangleBox(mesh, f))) || !valid(g))
+        {
+          return;
+        }
+        if (FacesIntersect(P, pid, Q, qid))
+        {
+          found[block].emplace_back(std::min(f, g), std::max(f, g));
+        }
+      });
+    }
+  });
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (auto & blockPairs : found)
+  {
+    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 TriangleMeshQualityReport
 AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
                     const TriangleMeshQualityOptions & options,

@@ -530,12 +530,36 @@ MakeSurfaceNetFaces(const SurfaceNet &                          net,
   });
 }
 
+std::vector<Vec3>
+ToPhysical(const std::vector<Vec3> & index, const Vec3 & origin, const Matrix<double, 3, 3> & M, bool roundToFloat)
+{
+  std::vector<Vec3> physical(index.size());
+  for (std::size_t i = 0; i < index.size(); ++i)
+  {
+    Vec3 p = origin;
+    for (unsigned int r = 0; r < 3; ++r)
+    {
+      for (unsigned int c = 0; c < 3; ++c)
+      {
+        p[r] += M[r][c] * index[i][c];
+      }
+      if (roundToFloat)
+      {
+        p[r] = static_cast<double>(static_cast<float>(p[r]));
+      }
+    }
+    physical[i] = p;
+  }
+  return physical;
+}
+
 std::size_t
 RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
                                   const std::vector<Vec3> &    initial,
                                   const Vec3 &                 origin,
                                   const Matrix<double, 3, 3> & indexToPhysical,
-                                  QuadSplit                    split)
+                                  QuadSplit                    split,
+                                  bool                         roundToFloat)
 {
   std::vector<bool>                         moved(net.positions.size(), false);
   std::vector<bool>                         movedLastRound(net.positions.size(), false);
@@ -548,11 +572,10 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
   constexpr unsigned int                    MaximumRounds = 64;
   for (unsigned int round = 0;; ++round)
   {
-    // Intersection is invariant under the affine index-to-physical map: test the
-    // faces as they will be output, on the index-space positions.
+    // Test the faces as they will be written.
     MakeSurfaceNetFaces(net, origin, indexToPhysical, split == QuadSplit::KeepQuads ? QuadSplit::ShortestDiagonal : split,
                         points, polygons, polygonSize);
-    mesh.points = net.positions;
+    mesh.points = ToPhysical(net.positions, origin, indexToPhysical, roundToFloat);
     mesh.triangles.resize(polygons.size());
     for (std::size_t f = 0; f < polygons.size(); ++f)
     {

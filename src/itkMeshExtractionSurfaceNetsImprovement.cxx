@@ -18,6 +18,7 @@
 #include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQualityAnalysis.h"
+#include "itkMeshExtractionTriangleAABBTree.h"
 
 #include <algorithm>
 #include <numeric>
@@ -31,35 +32,11 @@ namespace
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 
 inline std::uint32_t
-Next(std::uint32_t h)
-{
-  return h - h % 3 + (h % 3 + 1) % 3;
-}
-inline std::uint32_t
 Previous(std::uint32_t h)
 {
   return h - h % 3 + (h % 3 + 2) % 3;
 }
 } // namespace
-
-std::vector<Vec3>
-ToPhysical(const std::vector<Vec3> & index, const Vec3 & origin, const Matrix<double, 3, 3> & M)
-{
-  std::vector<Vec3> physical(index.size());
-  for (std::size_t i = 0; i < index.size(); ++i)
-  {
-    Vec3 p = origin;
-    for (unsigned int r = 0; r < 3; ++r)
-    {
-      for (unsigned int c = 0; c < 3; ++c)
-      {
-        p[r] += M[r][c] * index[i][c];
-      }
-    }
-    physical[i] = p;
-  }
-  return physical;
-}
 
 void
 SurfaceNetTriangles::BuildConnectivity(std::size_t numberOfPoints)
@@ -155,7 +132,10 @@ SurfaceNetTriangles::FillLinks(SurfaceNet & net) const
 }
 
 std::vector<EdgeSwapRecord>
-SwapEdges(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, const EdgeSwapParameters & parameters)
+SwapEdges(const std::vector<Vec3> &          physical,
+          SurfaceNetTriangles &              mesh,
+          const EdgeSwapParameters &         parameters,
+          const std::vector<std::uint64_t> * refused)
 {
   std::vector<EdgeSwapRecord> records;
   std::vector<bool>           touched(mesh.triangles.size(), false);
@@ -194,6 +174,11 @@ SwapEdges(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, const 
     {
       continue;
     }
+    if (refused != nullptr &&
+        std::binary_search(refused->begin(), refused->end(), EdgeKey(a, b)))
+    {
+      continue;
+    }
     q.oppositeEdgeExists = !q.sameApex && mesh.HasEdge(c, d, 3 * f + (k + 2) % 3);
     if (!EvaluateEdgeSwap(q, parameters).Swap())
     {
@@ -227,30 +212,70 @@ SwapEdges(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, const 
 }
 
 std::size_t
-UndoIntersectingSwaps(const std::vector<Vec3> & physical, SurfaceNetTriangles & mesh, std::vector<EdgeSwapRecord> & swaps)
+UndoIntersectingSwaps(const std::vector<Vec3> &    physical,
+                      SurfaceNetTriangles &        mesh,
+                      std::vector<EdgeSwapRecord> & swaps,
+                      std::vector<std::uint64_t> * refused)
 {
   std::size_t         undone = 0;
   IndexedTriangleMesh check;
   check.points = physical;
+  check.triangles = mesh.triangles;
+  // Positions are fixed here: a swapped pair, swapped or not, stays inside the box of
+  // its four corners, so one tree serves every check below.
+  std::vector<AxisAlignedBox> boxes(mesh.triangles.size());
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    boxes[f] = TriangleBox(check, f);
+  }
   std::vector<std::uint32_t> changed;
   for (const auto & s : swaps)
   {
+    AxisAlignedBox quad = boxes[s.first];
+    quad.Add(boxes[s.second]);
+    boxes[s.first] = quad;
+    boxes[s.second] = quad;
     changed.push_back(s.first);
     changed.push_back(s.second);
   }
+  if (swaps.empty())
+  {
+    return 0;
+  }
+  TriangleAABBTree tree;
+  tree.Build(check, nullptr, &boxes);
   while (!changed.empty())
   {
     check.triangles = mesh.triangles;
-    const auto pairs = FindSelfIntersections(check, &changed);
-    if (pairs.empty())
-    {
-      break;
-    }
+    const auto        pairs = FindSelfIntersections(check, changed, tree);
     std::vector<bool> bad(mesh.triangles.size(), false);
+    bool              anyBad = !pairs.empty();
     for (const auto & p : pairs)
     {
       bad[p.first] = true;
       bad[p.second] = true;
+    }
+    // Folds against a neighbour (twins are those of the current triangles).
+    for (std::uint32_t f : changed)
+    {
+      const auto & t = mesh.triangles[f];
+      const Vec3   n = TriangleNormal(physical[t[0]], physical[t[1]], physical[t[2]]);
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t g = mesh.twin[3 * f + k] / 3;
+        const auto &        u = mesh.triangles[g];
+        const Vec3          m = TriangleNormal(physical[u[0]], physical[u[1]], physical[u[2]]);
+        if (Dot(n, m) < FoldCosine * Norm(n) * Norm(m))
+        {
+          bad[f] = true;
+          bad[g] = true;
+          anyBad = true;
+        }
+      }
+    }
+    if (!anyBad)
+    {
+      break;
     }
     changed.clear();
     std::vector<EdgeSwapRecord> kept;
@@ -258,6 +283,21 @@ UndoIntersectingSwaps(const std::vector<Vec3> & physical, SurfaceNetTriangles & 
     {
       if (bad[s.first] || bad[s.second])
       {
+        if (refused != nullptr)
+        {
+          // The swapped edge runs between the two corners the old triangles share.
+          const auto & t = s.oldFirst;
+          for (unsigned int k = 0; k < 3; ++k)
+          {
+            const std::uint32_t a = t[k];
+            const std::uint32_t b = t[(k + 1) % 3];
+            const auto &        u = s.oldSecond;
+            if ((u[0] == a || u[1] == a || u[2] == a) && (u[0] == b || u[1] == b || u[2] == b))
+            {
+              refused->push_back(EdgeKey(a, b));
+            }
+          }
+        }
         mesh.triangles[s.first] = s.oldFirst;
         mesh.triangles[s.second] = s.oldSecond;
         changed.push_back(s.first);
@@ -271,44 +311,83 @@ UndoIntersectingSwaps(const std::vector<Vec3> & physical, SurfaceNetTriangles & 
     }
     if (changed.empty())
     {
-      // Intersections that no swap of this sweep caused: not expected, leave them to
-      // the caller's checks.
+      // Defects that no swap of this sweep caused: not expected, leave them to the
+      // caller's checks.
       break;
     }
     swaps.swap(kept);
-  }
-  if (undone > 0)
-  {
     mesh.BuildConnectivity(physical.size());
+  }
+  if (refused != nullptr)
+  {
+    std::sort(refused->begin(), refused->end());
+    refused->erase(std::unique(refused->begin(), refused->end()), refused->end());
   }
   return undone;
 }
 
 std::size_t
-PullBackInvalidMoves(std::vector<Vec3> &                  positions,
-                     const std::vector<Vec3> &            start,
-                     const std::vector<TriangleIndices> & triangles,
-                     const Vec3 &                         origin,
-                     const Matrix<double, 3, 3> &         M,
-                     double                               tolerance)
+PullBackInvalidMoves(std::vector<Vec3> &          positions,
+                     const std::vector<Vec3> &    start,
+                     const SurfaceNetTriangles &  mesh,
+                     const Vec3 &                 origin,
+                     const Matrix<double, 3, 3> & M,
+                     double                       tolerance,
+                     bool                         roundToFloat)
 {
-  const std::vector<Vec3> startPhysical = ToPhysical(start, origin, M);
-  std::vector<Vec3>       startNormals(triangles.size());
-  for (std::size_t f = 0; f < triangles.size(); ++f)
+  const auto &            triangles = mesh.triangles;
+  const std::size_t       numberOfTriangles = triangles.size();
+  const std::vector<Vec3> startPhysical = ToPhysical(start, origin, M, roundToFloat);
+  std::vector<Vec3>       startNormals(numberOfTriangles);
+  for (std::size_t f = 0; f < numberOfTriangles; ++f)
   {
     const auto & t = triangles[f];
     startNormals[f] = TriangleNormal(startPhysical[t[0]], startPhysical[t[1]], startPhysical[t[2]]);
   }
+  auto folded = [](const Vec3 & n, const Vec3 & m) { return Dot(n, m) < FoldCosine * Norm(n) * Norm(m); };
+  std::vector<std::uint8_t> foldedAtStart(numberOfTriangles, 0);
+  for (std::uint32_t f = 0; f < numberOfTriangles; ++f)
+  {
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      if (folded(startNormals[f], startNormals[mesh.twin[3 * f + k] / 3]))
+      {
+        foldedAtStart[f] |= static_cast<std::uint8_t>(1u << k);
+      }
+    }
+  }
+  IndexedTriangleMesh check;
+  check.triangles = triangles;
+  check.points = ToPhysical(positions, origin, M, roundToFloat);
+  // Nodes only move back toward `start`: a tree of boxes around both positions of
+  // every triangle serves every round.
+  std::vector<AxisAlignedBox> boxes(numberOfTriangles);
+  for (std::uint32_t f = 0; f < numberOfTriangles; ++f)
+  {
+    for (std::uint32_t v : triangles[f])
+    {
+      boxes[f].Add(check.points[v]);
+      boxes[f].Add(startPhysical[v]);
+    }
+  }
+  TriangleAABBTree tree;
+  tree.Build(check, nullptr, &boxes);
+
   std::vector<bool>         moved(positions.size(), false);
   std::vector<unsigned int> pulls(positions.size(), 0);
-  std::vector<bool>         changedVertex(positions.size(), true);
-  IndexedTriangleMesh       check;
-  check.triangles = triangles;
+  std::vector<bool>         changedVertex(positions.size(), false);
+  for (std::size_t v = 0; v < positions.size(); ++v)
+  {
+    changedVertex[v] = positions[v] != start[v]; // `start` is valid: only moved nodes matter
+  }
   for (unsigned int round = 0; round < 64; ++round)
   {
-    check.points = ToPhysical(positions, origin, M);
+    if (round > 0)
+    {
+      check.points = ToPhysical(positions, origin, M, roundToFloat);
+    }
     std::vector<std::uint32_t> candidates;
-    for (std::uint32_t f = 0; f < triangles.size(); ++f)
+    for (std::uint32_t f = 0; f < numberOfTriangles; ++f)
     {
       const auto & t = triangles[f];
       if (changedVertex[t[0]] || changedVertex[t[1]] || changedVertex[t[2]])
@@ -323,12 +402,27 @@ PullBackInvalidMoves(std::vector<Vec3> &                  positions,
       const Vec3 & a = check.points[t[0]];
       const Vec3 & b = check.points[t[1]];
       const Vec3 & c = check.points[t[2]];
-      if (!(Dot(TriangleNormal(a, b, c), startNormals[f]) > 0.0) || !(MeasureTriangle(a, b, c).qArea > tolerance))
+      const Vec3   n = TriangleNormal(a, b, c);
+      if (!(Dot(n, startNormals[f]) > 0.0) || !(MeasureTriangle(a, b, c).qArea > tolerance))
       {
         badNodes.insert(badNodes.end(), t.begin(), t.end());
+        continue;
+      }
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        if ((foldedAtStart[f] >> k) & 1u)
+        {
+          continue;
+        }
+        const auto & u = triangles[mesh.twin[3 * f + k] / 3];
+        if (folded(n, TriangleNormal(check.points[u[0]], check.points[u[1]], check.points[u[2]])))
+        {
+          badNodes.insert(badNodes.end(), t.begin(), t.end());
+          badNodes.insert(badNodes.end(), u.begin(), u.end());
+        }
       }
     }
-    for (const auto & p : FindSelfIntersections(check, &candidates))
+    for (const auto & p : FindSelfIntersections(check, candidates, tree))
     {
       badNodes.insert(badNodes.end(), triangles[p.first].begin(), triangles[p.first].end());
       badNodes.insert(badNodes.end(), triangles[p.second].begin(), triangles[p.second].end());
@@ -348,7 +442,7 @@ PullBackInvalidMoves(std::vector<Vec3> &                  positions,
       }
       moved[v] = true;
       changedVertex[v] = true;
-      positions[v] = ++pulls[v] > 4 ? start[v] : start[v] + (positions[v] - start[v]) * 0.5;
+      positions[v] = ++pulls[v] > 1 ? start[v] : start[v] + (positions[v] - start[v]) * 0.5;
     }
     if (round == 63)
     {

@@ -25,7 +25,9 @@ namespace itk
 namespace MeshExtraction
 {
 void
-TriangleAABBTree::Build(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * subset)
+TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
+                        const std::vector<std::uint32_t> *  subset,
+                        const std::vector<AxisAlignedBox> * givenBoxes)
 {
   m_Mesh = &mesh;
   m_Nodes.clear();
@@ -49,15 +51,48 @@ TriangleAABBTree::Build(const IndexedTriangleMesh & mesh, const std::vector<std:
   std::vector<Vec3>           centroids(n);
   for (std::size_t i = 0; i < n; ++i)
   {
-    boxes[i] = TriangleBox(mesh, m_Triangles[i]);
+    boxes[i] = givenBoxes ? (*givenBoxes)[m_Triangles[i]] : TriangleBox(mesh, m_Triangles[i]);
     for (unsigned int d = 0; d < 3; ++d)
     {
       centroids[i][d] = 0.5 * (boxes[i].lower[d] + boxes[i].upper[d]);
     }
   }
-  // Sort a permutation of the slots; boxes and triangles follow it at the end.
+  // Order the slots along a Morton (Z-order) curve of the box centres, then split
+  // every range in the middle: spatially coherent halves without any comparison
+  // sort per level (the build is O(n log n) in one std::sort of 64-bit keys).
+  AxisAlignedBox centreBounds;
+  for (const auto & c : centroids)
+  {
+    centreBounds.Add(c);
+  }
+  auto spread = [](std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | (x << 32)) & 0x1f00000000ffffULL;
+    x = (x | (x << 16)) & 0x1f0000ff0000ffULL;
+    x = (x | (x << 8)) & 0x100f00f00f00f00fULL;
+    x = (x | (x << 4)) & 0x10c30c30c30c30c3ULL;
+    x = (x | (x << 2)) & 0x1249249249249249ULL;
+    return x;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    std::uint64_t code = 0;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      const double extent = centreBounds.upper[d] - centreBounds.lower[d];
+      const double t = extent > 0.0 ? (centroids[i][d] - centreBounds.lower[d]) / extent : 0.0;
+      const auto   q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0);
+      code |= spread(q) << d;
+    }
+    keys[i] = { code, static_cast<std::uint32_t>(i) };
+  }
+  std::sort(keys.begin(), keys.end());
   std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    order[i] = keys[i].second;
+  }
 
   constexpr std::uint32_t LeafSize = 4;
   struct Task
@@ -74,14 +109,6 @@ TriangleAABBTree::Build(const IndexedTriangleMesh & mesh, const std::vector<std:
   {
     const Task task = tasks.back();
     tasks.pop_back();
-    AxisAlignedBox bounds;
-    AxisAlignedBox centroidBounds;
-    for (std::uint32_t i = task.begin; i < task.end; ++i)
-    {
-      bounds.Add(boxes[order[i]]);
-      centroidBounds.Add(centroids[order[i]]);
-    }
-    m_Nodes[task.node].box = bounds;
     const std::uint32_t count = task.end - task.begin;
     if (count <= LeafSize)
     {
@@ -89,29 +116,32 @@ TriangleAABBTree::Build(const IndexedTriangleMesh & mesh, const std::vector<std:
       m_Nodes[task.node].count = count;
       continue;
     }
-    unsigned int axis = 0;
-    for (unsigned int d = 1; d < 3; ++d)
-    {
-      if (centroidBounds.upper[d] - centroidBounds.lower[d] > centroidBounds.upper[axis] - centroidBounds.lower[axis])
-      {
-        axis = d;
-      }
-    }
     const std::uint32_t middle = task.begin + count / 2;
-    std::nth_element(order.begin() + task.begin,
-                     order.begin() + middle,
-                     order.begin() + task.end,
-                     [&centroids, axis](std::uint32_t a, std::uint32_t b) {
-                       return centroids[a][axis] < centroids[b][axis] ||
-                              (centroids[a][axis] == centroids[b][axis] && a < b);
-                     });
-    const auto left = static_cast<std::uint32_t>(m_Nodes.size());
+    const auto          left = static_cast<std::uint32_t>(m_Nodes.size());
     m_Nodes.emplace_back();
     m_Nodes.emplace_back();
     m_Nodes[task.node].first = left;
     m_Nodes[task.node].count = 0;
     tasks.push_back({ left, task.begin, middle });
     tasks.push_back({ left + 1, middle, task.end });
+  }
+  // Boxes bottom-up: children always come after their parent.
+  for (std::size_t k = m_Nodes.size(); k-- > 0;)
+  {
+    Node & node = m_Nodes[k];
+    node.box = AxisAlignedBox();
+    if (node.count > 0)
+    {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+      {
+        node.box.Add(boxes[order[i]]);
+      }
+    }
+    else
+    {
+      node.box.Add(m_Nodes[node.first].box);
+      node.box.Add(m_Nodes[node.first + 1].box);
+    }
   }
   std::vector<std::uint32_t>  triangles(n);
   std::vector<AxisAlignedBox> sortedBoxes(n);
