@@ -42,7 +42,7 @@ struct ExtractSettings
   double                          label{ 1.0 };
   std::string                     labelImage;
   SurfaceNetsEnums::Relaxation    relaxation{ SurfaceNetsEnums::Relaxation::Automatic };
-  unsigned int                    iterations{ 20 };
+  unsigned int                    iterations{ 10 };
   SurfaceNetsEnums::Triangulation triangulation{ SurfaceNetsEnums::Triangulation::ShortestDiagonal };
   SurfaceNetsEnums::Gradient      gradient{ SurfaceNetsEnums::Gradient::CentralDifference };
   double                          sigma{ 1.0 };
@@ -192,7 +192,7 @@ RunExtract(const Arguments & args)
   }
   s.insideAbove = inside == "above";
   s.relaxation = RelaxationFromName(args.Get("relaxation", "auto"));
-  const long iterations = args.GetInteger("iterations", 20);
+  const long iterations = args.GetInteger("iterations", 10);
   if (iterations < 0)
   {
     throw UsageError("--iterations must be >= 0");
@@ -323,7 +323,7 @@ MakeExtractCommand()
     { "labels", "FILE", "segmentation whose --label voxels give the net, relaxed toward INPUT's iso-surface", "" },
     { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
     { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
-    { "iterations", "N", "maximum relaxation iterations", "20" },
+    { "iterations", "N", "maximum relaxation iterations", "10" },
     { "triangulation", "MODE", "shortest, delaunay or quads", "shortest" },
     { "sigma", "MM", "Gaussian-derivative gradients of this scale instead of central differences", "" },
     { "quality", "standard|high", "high: alternate regularity edge swaps with SNERT on the triangles", "standard" },

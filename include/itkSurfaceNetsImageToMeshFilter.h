@@ -117,7 +117,8 @@ public:
   /** Relaxation (default Automatic: SNERT with a greyscale image, SNA without). */
   itkSetEnumMacro(Relaxation, RelaxationEnum);
   itkGetEnumMacro(Relaxation, RelaxationEnum);
-  /** Iteration limit of the relaxation (default 20). */
+  /** Iteration limit of the relaxation (default 10: on the sphere phantoms quality and
+   * accuracy do not change between 5 and 20 iterations). */
   itkSetMacro(MaximumNumberOfIterations, unsigned int);
   itkGetConstMacro(MaximumNumberOfIterations, unsigned int);
   /** The relaxation stops when no node moved more than this (voxels, default 1e-3). */
@@ -240,7 +241,7 @@ private:
   bool              m_ClassifyByLabel{ false };
   double            m_LabelValue{ 1.0 };
   RelaxationEnum    m_Relaxation{ RelaxationEnum::Automatic };
-  unsigned int      m_MaximumNumberOfIterations{ 20 };
+  unsigned int      m_MaximumNumberOfIterations{ 10 };
   double            m_ConvergenceThreshold{ 1e-3 };
   double            m_SmoothingWeight{ 1.0 };
   double            m_ProjectionWeight{ 1.0 };

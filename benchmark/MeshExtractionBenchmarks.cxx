@@ -1,0 +1,322 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+// MeshExtraction's benchmarks (Google Benchmark). Not tests: run them by hand, e.g.
+//
+//   MeshExtractionBenchmarks                       128^3 and 256^3, under ~2 minutes
+//   MeshExtractionBenchmarks --large               also 512^3 (minutes, ~2 GB)
+//   python3 benchmark/ratios.py BUILD/benchmark/MeshExtractionBenchmarks   the ratios
+//
+// Extraction (issues 5 and 6): SurfaceNets without relaxation (net construction), SNA,
+// SNERT and the high-quality mode, against vtkFlyingEdges3D and vtkFlyingEdges3D +
+// vtkWindowedSincPolyDataFilter (20 iterations, pass band 0.1: 3D Slicer's smoothing),
+// on the sphere phantom's signed distance map (float, 1 mm voxels, radius 0.3 N) at
+// N^3 = 128^3, 256^3 (and 512^3 with --large), with 1 thread and with all threads (ITK
+// work units and VTK SMP threads alike). A run goes from the image in memory to the mesh
+// in ITK physical space, exactly as meshextraction-compare times it: wall-clock time of
+// each run taken by hand (UseManualTime), since the work is multithreaded and freeing
+// the previous run's mesh is not part of the extraction. The calculators use UseRealTime.
+//
+// Measurement: TriangleMeshQualityCalculator on a 1M-triangle mesh, and
+// MeshSurfaceDistanceCalculator for ~1M points (the vertices and face centroids of a
+// 666k-triangle mesh) against a 1M-triangle reference.
+
+#include "itkImage.h"
+#include "itkMesh.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionPhantoms.h"
+#include "itkMeshSurfaceDistanceCalculator.h"
+#include "itkMultiThreaderBase.h"
+#include "itkSurfaceNetsImageToMeshFilter.h"
+#include "itkTriangleMeshQualityCalculator.h"
+
+#ifdef MESHEXTRACTION_BENCHMARK_WITH_VTK
+#  include "meshextraction-compare-methods.h"
+#endif
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace ME = itk::MeshExtraction;
+using ImageType = itk::Image<float, 3>;
+using MeshType = itk::Mesh<double, 3>;
+using Relaxation = itk::SurfaceNetsImageToMeshFilterEnums::Relaxation;
+
+/** The sphere phantom's distance map on an N^3 grid of 1 mm voxels, made once per N. */
+const ImageType *
+SphereDistanceMap(unsigned int n)
+{
+  static std::map<unsigned int, ImageType::Pointer> cache;
+  auto &                                            image = cache[n];
+  if (image.IsNull())
+  {
+    ME::PhantomGrid grid = ME::DefaultPhantomGrid(ME::PhantomShape::Sphere);
+    grid.size.Fill(n);
+    auto source = ME::MakePhantomImageSource<ImageType>(ME::PhantomShape::Sphere, grid);
+    source->Update();
+    image = source->GetOutput();
+    image->DisconnectPipeline();
+  }
+  return image.GetPointer();
+}
+
+using Clock = std::chrono::steady_clock;
+
+/** Wall-clock seconds since `start`: the extraction benchmarks time each run by hand
+ * (UseManualTime), so that freeing the previous output is not part of it. */
+double
+Seconds(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+unsigned int
+AllThreads()
+{
+  return itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
+}
+
+void
+SetCounters(benchmark::State & state, unsigned int n, std::size_t triangles, unsigned int threads)
+{
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["threads"] = threads;
+  state.counters["voxels/s"] =
+    benchmark::Counter(static_cast<double>(n) * n * n, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// ------------------------------------------------------------------------------
+// Extraction
+// ------------------------------------------------------------------------------
+void
+SurfaceNets(benchmark::State & state, Relaxation relaxation, bool highQuality)
+{
+  const auto        n = static_cast<unsigned int>(state.range(0));
+  const auto        threads = static_cast<unsigned int>(state.range(1));
+  const ImageType * image = SphereDistanceMap(n);
+  auto              extract = [&]() {
+    using FilterType = itk::SurfaceNetsImageToMeshFilter<ImageType, MeshType>;
+    auto filter = FilterType::New();
+    filter->SetInput(image);
+    filter->SetIsoValue(0.0);
+    filter->SetInsideIsAboveIsoValue(false);
+    filter->SetRelaxation(relaxation);
+    filter->SetHighQuality(highQuality);
+    filter->SetNumberOfWorkUnits(threads);
+    filter->Update();
+    return MeshType::Pointer(filter->GetOutput());
+  };
+  std::size_t triangles = 0;
+  for (auto _ : state)
+  {
+    const auto        start = Clock::now();
+    MeshType::Pointer mesh = extract();
+    state.SetIterationTime(Seconds(start));
+    triangles = mesh->GetNumberOfCells();
+    // The mesh is freed here, outside the timed part (as in meshextraction-compare).
+  }
+  SetCounters(state, n, triangles, threads);
+}
+
+#ifdef MESHEXTRACTION_BENCHMARK_WITH_VTK
+void
+VTKMethod(benchmark::State & state, const char * key)
+{
+  const auto                             n = static_cast<unsigned int>(state.range(0));
+  const auto                             threads = static_cast<unsigned int>(state.range(1));
+  const MeshExtractionCompare::Method    method = MeshExtractionCompare::FindMethod(key);
+  MeshExtractionCompare::ExtractionInput input;
+  input.image = SphereDistanceMap(n);
+  input.isoValue = 0.0;
+  input.insideIsAboveIsoValue = false;
+  input.numberOfWorkUnits = threads;
+  vtkSMPTools::Initialize(static_cast<int>(threads));
+  for (auto _ : state)
+  {
+    const auto                          start = Clock::now();
+    MeshExtractionCompare::MethodOutput out = method.run(input);
+    state.SetIterationTime(Seconds(start));
+    benchmark::DoNotOptimize(&out);
+  }
+  // One more run, untimed, to count the triangles.
+  const std::size_t triangles = method.run(input).toIndexedMesh().triangles.size();
+  vtkSMPTools::Initialize();
+  SetCounters(state, n, triangles, threads);
+}
+#endif
+
+// ------------------------------------------------------------------------------
+// Measurement
+// ------------------------------------------------------------------------------
+/** Torus about the z axis (major radius R, minor radius r): nu x nv quads split into
+ * 2 nu nv outward triangles, nu nv vertices. */
+MeshType::Pointer
+MakeTorus(unsigned int nu, unsigned int nv, double R, double r)
+{
+  ME::IndexedTriangleMesh m;
+  for (unsigned int i = 0; i < nu; ++i)
+  {
+    const double u = 2.0 * itk::Math::pi * i / nu;
+    for (unsigned int j = 0; j < nv; ++j)
+    {
+      const double v = 2.0 * itk::Math::pi * j / nv;
+      m.points.push_back(
+        ME::MakeVec3((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)));
+    }
+  }
+  auto id = [nu, nv](unsigned int i, unsigned int j) { return static_cast<std::uint32_t>((i % nu) * nv + (j % nv)); };
+  for (unsigned int i = 0; i < nu; ++i)
+  {
+    for (unsigned int j = 0; j < nv; ++j)
+    {
+      m.triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      m.triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+    }
+  }
+  auto mesh = MeshType::New();
+  ME::FillMesh(m, *mesh);
+  return mesh;
+}
+
+void
+QualityCalculator(benchmark::State & state, bool selfIntersections)
+{
+  static const MeshType::Pointer mesh = MakeTorus(1000, 500, 40.0, 12.0); // 1,000,000 triangles
+  for (auto _ : state)
+  {
+    auto calculator = itk::TriangleMeshQualityCalculator<MeshType>::New();
+    calculator->SetMesh(mesh);
+    calculator->SetComputeSelfIntersections(selfIntersections);
+    calculator->Compute();
+    benchmark::DoNotOptimize(calculator->GetMeanQAngle());
+  }
+  state.counters["triangles"] = static_cast<double>(mesh->GetNumberOfCells());
+  state.counters["triangles/s"] =
+    benchmark::Counter(static_cast<double>(mesh->GetNumberOfCells()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void
+DistanceCalculator(benchmark::State & state)
+{
+  // 332,928 vertices + 665,856 face centroids = 998,784 query points, against 1M triangles.
+  static const MeshType::Pointer mesh = MakeTorus(816, 408, 40.0, 12.3);
+  static const MeshType::Pointer reference = MakeTorus(1000, 500, 40.0, 12.0);
+  const double                   points = static_cast<double>(mesh->GetNumberOfPoints() + mesh->GetNumberOfCells());
+  for (auto _ : state)
+  {
+    auto calculator = itk::MeshSurfaceDistanceCalculator<MeshType>::New();
+    calculator->SetMesh(mesh);
+    calculator->SetReferenceMesh(reference);
+    calculator->SetSymmetric(false);
+    calculator->SetSamplingLevel(0);
+    calculator->Compute();
+    benchmark::DoNotOptimize(calculator->GetVertexDistance().mean);
+  }
+  state.counters["points"] = points;
+  state.counters["reference triangles"] = static_cast<double>(reference->GetNumberOfCells());
+  state.counters["points/s"] = benchmark::Counter(points, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void
+RegisterExtraction(const std::string &                             name,
+                   const std::vector<long> &                       sizes,
+                   const std::function<void(benchmark::State &)> & function)
+{
+  auto * b = benchmark::RegisterBenchmark(name.c_str(), function);
+  b->ArgNames({ "size", "threads" })->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+  for (long n : sizes)
+  {
+    b->Args({ n, 1 });
+    if (AllThreads() > 1)
+    {
+      b->Args({ n, static_cast<long>(AllThreads()) });
+    }
+  }
+}
+} // namespace
+
+int
+main(int argc, char ** argv)
+{
+  // --large adds the 512^3 cases (each image is 512 MiB; SNERT takes seconds per run).
+  bool                large = false;
+  std::vector<char *> arguments;
+  for (int i = 0; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--large") == 0)
+    {
+      large = true;
+    }
+    else
+    {
+      arguments.push_back(argv[i]);
+    }
+  }
+  int count = static_cast<int>(arguments.size());
+
+  std::vector<long> sizes = { 128, 256 };
+  if (large)
+  {
+    sizes.push_back(512);
+  }
+  RegisterExtraction(
+    "SurfaceNets/NoRelaxation", sizes, [](benchmark::State & s) { SurfaceNets(s, Relaxation::None, false); });
+  RegisterExtraction(
+    "SurfaceNets/SNA", sizes, [](benchmark::State & s) { SurfaceNets(s, Relaxation::Averaging, false); });
+  RegisterExtraction(
+    "SurfaceNets/SNERT", sizes, [](benchmark::State & s) { SurfaceNets(s, Relaxation::Combined, false); });
+  // Issue 6 asks for the high-quality mode at 128^3 and 256^3.
+  RegisterExtraction(
+    "SurfaceNets/HQ", { 128, 256 }, [](benchmark::State & s) { SurfaceNets(s, Relaxation::Combined, true); });
+#ifdef MESHEXTRACTION_BENCHMARK_WITH_VTK
+  RegisterExtraction("VTK/FlyingEdges3D", sizes, [](benchmark::State & s) { VTKMethod(s, "fe"); });
+  RegisterExtraction("VTK/FlyingEdges3D+WindowedSinc", sizes, [](benchmark::State & s) { VTKMethod(s, "fe-sinc"); });
+#endif
+  benchmark::RegisterBenchmark("TriangleMeshQualityCalculator/1M",
+                               [](benchmark::State & s) { QualityCalculator(s, true); })
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("TriangleMeshQualityCalculator/1M/NoSelfIntersections",
+                               [](benchmark::State & s) { QualityCalculator(s, false); })
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("MeshSurfaceDistanceCalculator/1Mpoints/1Mtriangles", DistanceCalculator)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+  benchmark::Initialize(&count, arguments.data());
+  if (benchmark::ReportUnrecognizedArguments(count, arguments.data()))
+  {
+    return 1;
+  }
+  benchmark::AddCustomContext("image", "sphere phantom signed distance map, float, 1 mm voxels, iso 0, inside below");
+  benchmark::AddCustomContext("ITK default threads", std::to_string(AllThreads()));
+#ifdef MESHEXTRACTION_BENCHMARK_WITH_VTK
+  benchmark::AddCustomContext("VTK SMP backend", vtkSMPTools::GetBackend());
+#endif
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

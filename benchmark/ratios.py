@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""Run MeshExtractionBenchmarks and print the speed ratios issues 5 and 6 ask for.
+
+    python3 benchmark/ratios.py BUILD/benchmark/MeshExtractionBenchmarks [--large]
+    python3 benchmark/ratios.py BINARY --repetitions 3     (best of 3, on a busy machine)
+    python3 benchmark/ratios.py --json results.json       (ratios of an earlier run)
+
+For every size and thread count (1 and all):
+  net construction / vtkFlyingEdges3D           issue 5 target: <= 1
+  SNA / vtkFlyingEdges3D
+  SNERT / (FlyingEdges3D + windowed sinc)       issue 5 target: <= 2
+  HQ / vtkFlyingEdges3D                          issue 6 target: <= 10
+  HQ / SNERT, HQ / (FlyingEdges3D + windowed sinc)
+Times are wall-clock (the extraction benchmarks time each run by hand: UseManualTime). Python standard library only.
+"""
+
+import argparse
+import json
+import re
+import subprocess
+import sys
+
+NAME = re.compile(r"^(?P<method>.+?)/size:(?P<size>\d+)/threads:(?P<threads>\d+)")
+UNIT = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
+
+COLUMNS = [  # (benchmark name, short label)
+    ("SurfaceNets/NoRelaxation", "net"),
+    ("SurfaceNets/SNA", "SNA"),
+    ("SurfaceNets/SNERT", "SNERT"),
+    ("SurfaceNets/HQ", "HQ"),
+    ("VTK/FlyingEdges3D", "FE3D"),
+    ("VTK/FlyingEdges3D+WindowedSinc", "FE+sinc"),
+]
+
+RATIOS = [  # (label, numerator, denominator, target)
+    ("net/FE3D", "net", "FE3D", 1.0),
+    ("SNA/FE3D", "SNA", "FE3D", None),
+    ("SNERT/(FE+sinc)", "SNERT", "FE+sinc", 2.0),
+    ("HQ/FE3D", "HQ", "FE3D", 10.0),
+    ("HQ/SNERT", "HQ", "SNERT", None),
+    ("HQ/(FE+sinc)", "HQ", "FE+sinc", None),
+]
+
+
+def run_benchmarks(binary, large, repetitions, extra):
+    command = [binary, "--benchmark_format=json", "--benchmark_filter=^(SurfaceNets|VTK)/"]
+    if large:
+        command.append("--large")
+    if repetitions > 1:
+        command.append("--benchmark_repetitions={}".format(repetitions))
+    command += extra
+    print("running:", " ".join(command), file=sys.stderr)
+    result = subprocess.run(command, check=True, stdout=subprocess.PIPE, universal_newlines=True)
+    return json.loads(result.stdout)
+
+
+def collect(results):
+    """{(size, threads): {label: milliseconds}} from Google Benchmark's JSON."""
+    label_of = dict(COLUMNS)
+    times = {}
+    for entry in results.get("benchmarks", []):
+        if entry.get("run_type") == "aggregate" and entry.get("aggregate_name") != "median":
+            continue
+        if "error_occurred" in entry and entry["error_occurred"]:
+            continue
+        match = NAME.match(entry.get("run_name", entry["name"]))
+        if not match or match.group("method") not in label_of:
+            continue
+        key = (int(match.group("size")), int(match.group("threads")))
+        label = label_of[match.group("method")]
+        ms = entry["real_time"] * UNIT[entry.get("time_unit", "ns")]
+        cell = times.setdefault(key, {})
+        cell[label] = min(ms, cell.get(label, ms))  # repetitions: the best one
+    return times
+
+
+def print_tables(times, context):
+    if context:
+        print("machine: {} x {} MHz, load average {}; date {}".format(
+            context.get("num_cpus"), context.get("mhz_per_cpu"),
+            ", ".join("{:.2f}".format(x) for x in context.get("load_avg", [])), context.get("date")))
+    labels = [label for _, label in COLUMNS]
+    print("\nwall time per extraction (ms), sphere distance map, float, 1 mm voxels")
+    print("{:>6} {:>7} ".format("size", "threads") + " ".join("{:>9}".format(l) for l in labels))
+    for (size, threads) in sorted(times):
+        row = times[(size, threads)]
+        print("{:>5}^3 {:>7} ".format(size, threads) +
+              " ".join("{:>9}".format("{:.1f}".format(row[l]) if l in row else "-") for l in labels))
+
+    print("\nratios (SurfaceNets time / peer time; lower is faster)")
+    print("{:>6} {:>7} ".format("size", "threads") +
+          " ".join("{:>16}".format(label) for label, _, _, _ in RATIOS))
+    print("{:>6} {:>7} ".format("", "target") +
+          " ".join("{:>16}".format("<= {:g}".format(t) if t else "") for _, _, _, t in RATIOS))
+    for (size, threads) in sorted(times):
+        row = times[(size, threads)]
+        cells = []
+        for _, numerator, denominator, target in RATIOS:
+            if numerator in row and denominator in row and row[denominator] > 0:
+                ratio = row[numerator] / row[denominator]
+                mark = "" if target is None else (" ok" if ratio <= target else " NO")
+                cells.append("{:.2f}{}".format(ratio, mark))
+            else:
+                cells.append("-")
+        print("{:>5}^3 {:>7} ".format(size, threads) + " ".join("{:>16}".format(c) for c in cells))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("binary", nargs="?", help="the MeshExtractionBenchmarks executable")
+    parser.add_argument("--large", action="store_true", help="include the 512^3 cases")
+    parser.add_argument("--repetitions", type=int, default=1,
+                        help="repeat every benchmark N times and keep the best (for a shared, noisy machine)")
+    parser.add_argument("--json", help="read the results of an earlier --benchmark_format=json run instead")
+    parser.add_argument("--save", help="write the benchmark's JSON output to this file")
+    parser.add_argument("extra", nargs="*", help="further arguments for the benchmark (after --)")
+    args = parser.parse_args()
+    if args.json:
+        with open(args.json) as f:
+            results = json.load(f)
+    elif args.binary:
+        results = run_benchmarks(args.binary, args.large, args.repetitions, args.extra)
+        if args.save:
+            with open(args.save, "w") as f:
+                json.dump(results, f, indent=1)
+    else:
+        parser.error("give the benchmark executable or --json FILE")
+    times = collect(results)
+    if not times:
+        sys.exit("no SurfaceNets/VTK extraction results found")
+    print_tables(times, results.get("context", {}))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Runs the main job with an existing build (see run-main-job.sh). OUT defaults to ./results.
+set -euo pipefail
+out=${1:-results}
+me=${MESHEXTRACTION:-build/examples/meshextraction}
+compare=${MESHEXTRACTION_COMPARE:-build/examples/meshextraction-compare}
+mkdir -p "$out"
+log() { echo "== $*" >&2; }
+
+# 1. Phantoms: a sphere distance map (128^3, radius 38.4 mm) and two overlapping spheres.
+for shape in sphere two-spheres; do
+  log "$shape: SNA, SNERT and high-quality SurfaceNets"
+  "$me" extract --phantom "$shape" --size 128 --relaxation sna "$out/$shape-sna.vtk"
+  "$me" extract --phantom "$shape" --size 128 "$out/$shape-snert.vtk"
+  "$me" extract --phantom "$shape" --size 128 --quality high "$out/$shape-high.vtk"
+  if [ -x "$compare" ]; then
+    "$compare" --phantom "$shape" --size 128 --markdown "$out/comparison-$shape.md" > "$out/comparison-$shape.txt"
+  fi
+  include=()
+  [ -f "$out/comparison-$shape.md" ] && include=(--include "$out/comparison-$shape.md")
+  "$me" report "$out/$shape" "$out/$shape-sna.vtk" "$out/$shape-snert.vtk" "$out/$shape-high.vtk" \
+    --phantom "$shape" --size 128 --title "SurfaceNets on the $shape phantom (128^3)" "${include[@]}"
+done
+
+# 2. The real head CT (skull at 300 HU), when invesalius-examples is installed.
+if bash scripts/prepare-data.sh "$out/data"; then
+  log "head CT: bone surface at 300 HU"
+  "$me" extract "$out/data/cranium.nhdr" --iso 300 "$out/cranium-snert.vtk"
+  "$me" extract "$out/data/cranium.nhdr" --iso 300 --quality high "$out/cranium-high.vtk"
+  if [ -x "$compare" ]; then
+    "$compare" "$out/data/cranium.nhdr" --iso 300 --markdown "$out/comparison-cranium.md" \
+      > "$out/comparison-cranium.txt"
+  fi
+  include=()
+  [ -f "$out/comparison-cranium.md" ] && include=(--include "$out/comparison-cranium.md")
+  "$me" report "$out/cranium" "$out/cranium-snert.vtk" "$out/cranium-high.vtk" \
+    --title "Head CT (invesalius-examples, 256x256x108, 0.96x0.96x1.5 mm), bone at 300 HU" "${include[@]}"
+fi
+
+# 3. An index page.
+{
+  echo "<!DOCTYPE html><html><head><meta charset='utf-8'><title>MeshExtraction results</title></head>"
+  echo "<body style='font-family:sans-serif;margin:2em'><h1>MeshExtraction results</h1><ul>"
+  for page in "$out"/*/index.html; do
+    dir=$(basename "$(dirname "$page")")
+    echo "<li><a href='$dir/index.html'>$dir</a></li>"
+  done
+  echo "</ul><p>Meshes: *.vtk next to this page; comparison tables: comparison-*.md.</p></body></html>"
+} > "$out/index.html"
+log "open $out/index.html"

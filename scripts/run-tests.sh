@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# The test command: installs the dependencies, builds, and runs every test.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-dependencies.sh
+bash scripts/build.sh
+ctest --test-dir build --output-on-failure -j "$(nproc)"
