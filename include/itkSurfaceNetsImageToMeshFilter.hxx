@@ -193,6 +193,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(Re
   p.projectionWeight = m_ProjectionWeight;
   p.sequential = m_SequentialRelaxation;
   p.isoValue = m_IsoValue;
+  p.centralDifferences = m_GradientMethod == GradientEnum::CentralDifference;
   p.numberOfWorkUnits = this->GetNumberOfWorkUnits();
   for (unsigned int r = 0; r < 3; ++r)
   {
