@@ -31,7 +31,8 @@ namespace MeshExtractionCLI
 // extract
 // ------------------------------------------------------------------------------
 using SurfaceNetsEnums = itk::SurfaceNetsImageToMeshFilterEnums;
-using ExtractMeshType = itk::QuadEdgeMesh<double, 3>;
+// The tool only writes the mesh: itk::Mesh is faster to fill than QuadEdgeMesh.
+using ExtractMeshType = itk::Mesh<double, 3>;
 
 /** The parts of the extract options that do not depend on the pixel type. */
 struct ExtractSettings
@@ -265,7 +266,7 @@ RunExtract(const Arguments & args)
     mesh = ExtractFromFile(args.positional[0], s);
   }
   WriteMeshFile(mesh.GetPointer(), output);
-  std::cerr << "  wrote " << output << " (" << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces()
+  std::cerr << "  wrote " << output << " (" << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfCells()
             << " faces)\n";
 
   if (args.Has("report") || args.Has("report-json"))

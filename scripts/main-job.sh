@@ -14,7 +14,8 @@ for shape in sphere two-spheres; do
   "$me" extract --phantom "$shape" --size 128 "$out/$shape-snert.vtk"
   "$me" extract --phantom "$shape" --size 128 --quality high "$out/$shape-high.vtk"
   if [ -x "$compare" ]; then
-    "$compare" --phantom "$shape" --size 128 --markdown "$out/comparison-$shape.md" > "$out/comparison-$shape.txt"
+    "$compare" --phantom "$shape" --size 128 --methods all --markdown "$out/comparison-$shape.md" \
+      --csv "$out/comparison-$shape.csv" > "$out/comparison-$shape.txt"
   fi
   include=()
   [ -f "$out/comparison-$shape.md" ] && include=(--include "$out/comparison-$shape.md")
@@ -28,12 +29,14 @@ if bash scripts/prepare-data.sh "$out/data"; then
   "$me" extract "$out/data/cranium.nhdr" --iso 300 "$out/cranium-snert.vtk"
   "$me" extract "$out/data/cranium.nhdr" --iso 300 --quality high "$out/cranium-high.vtk"
   if [ -x "$compare" ]; then
-    "$compare" "$out/data/cranium.nhdr" --iso 300 --markdown "$out/comparison-cranium.md" \
-      > "$out/comparison-cranium.txt"
+    "$compare" "$out/data/cranium.nhdr" --iso 300 --methods all --repeat 1 --write-meshes "$out/cranium-methods" \
+      --markdown "$out/comparison-cranium.md" --csv "$out/comparison-cranium.csv" > "$out/comparison-cranium.txt"
   fi
   include=()
   [ -f "$out/comparison-cranium.md" ] && include=(--include "$out/comparison-cranium.md")
-  "$me" report "$out/cranium" "$out/cranium-snert.vtk" "$out/cranium-high.vtk" \
+  others=()
+  for m in fe fe-sinc; do [ -f "$out/cranium-methods/$m.vtk" ] && others+=("$out/cranium-methods/$m.vtk"); done
+  "$me" report "$out/cranium" "$out/cranium-snert.vtk" "$out/cranium-high.vtk" "${others[@]}" \
     --title "Head CT (invesalius-examples, 256x256x108, 0.96x0.96x1.5 mm), bone at 300 HU" "${include[@]}"
 fi
 
