@@ -32,7 +32,7 @@ namespace ME = itk::MeshExtraction;
 inline std::string
 Describe(const itk::ExceptionObject & e)
 {
-  std::string text = e.GetDescription();
+  std::string       text = e.GetDescription();
   const std::string prefix = "ITK ERROR: ";
   if (text.compare(0, prefix.size(), prefix) == 0)
   {

@@ -113,7 +113,8 @@ public:
     }
     if (values.size() != count)
     {
-      throw UsageError("--" + name + " expects " + std::to_string(count) + " numbers (or one), got '" + Get(name) + "'");
+      throw UsageError("--" + name + " expects " + std::to_string(count) + " numbers (or one), got '" + Get(name) +
+                       "'");
     }
     return values;
   }
@@ -142,14 +143,14 @@ private:
 /** A subcommand: its usage line, description, options and body. */
 struct Command
 {
-  std::string                             name;
-  std::string                             summary;
-  std::string                             usage;       ///< after "meshextraction <name> "
-  std::string                             description; ///< paragraphs shown by --help
-  std::vector<OptionSpec>                 options;
-  std::function<int(const Arguments &)>   run;
-  unsigned int                            minimumPositional{ 0 };
-  unsigned int                            maximumPositional{ 1000 };
+  std::string                           name;
+  std::string                           summary;
+  std::string                           usage;       ///< after "meshextraction <name> "
+  std::string                           description; ///< paragraphs shown by --help
+  std::vector<OptionSpec>               options;
+  std::function<int(const Arguments &)> run;
+  unsigned int                          minimumPositional{ 0 };
+  unsigned int                          maximumPositional{ 1000 };
 
   void
   PrintHelp(std::ostream & os) const

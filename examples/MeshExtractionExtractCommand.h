@@ -109,8 +109,8 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   ReportProgress(filter.GetPointer(), "SurfaceNets");
   Stopwatch watch;
   filter->Update();
-  std::cerr << "  " << filter->GetNumberOfNodes() << " nodes (" << filter->GetNumberOfSplitCells()
-            << " split cells), " << filter->GetNumberOfIterations() << " relaxation iterations (last largest move "
+  std::cerr << "  " << filter->GetNumberOfNodes() << " nodes (" << filter->GetNumberOfSplitCells() << " split cells), "
+            << filter->GetNumberOfIterations() << " relaxation iterations (last largest move "
             << filter->GetLastMaximumRelocation() << " voxel), " << filter->GetNumberOfNodesMovedBack()
             << " nodes moved back";
   if (s.highQuality)
@@ -118,8 +118,7 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
     std::cerr << ", " << filter->GetNumberOfSwaps() << " swaps in " << filter->GetNumberOfRoundsPerformed()
               << " rounds";
   }
-  std::cerr << ", " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n"
-            << std::defaultfloat;
+  std::cerr << ", " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n" << std::defaultfloat;
   ExtractMeshType::Pointer mesh = filter->GetOutput();
   mesh->DisconnectPipeline();
   return mesh;
@@ -309,14 +308,13 @@ MakeExtractCommand()
   c.name = "extract";
   c.summary = "extract a surface mesh with SurfaceNets (SNA, SNERT)";
   c.usage = "INPUT OUTPUT [options]   |   meshextraction extract --phantom NAME OUTPUT [options]";
-  c.description =
-    "Extracts a closed, 2-manifold, outward-oriented triangle mesh from a 3-D image (any format ITK\n"
-    "reads, or a DICOM series directory) with SurfaceNets (thesis chapter 3) and writes it in the\n"
-    "format OUTPUT's extension names (.vtk, .obj, .off, .gii, .byu). The object is the voxels\n"
-    "above (or below) --iso; or the voxels equal to --label in a label image; or a segmentation\n"
-    "(--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface. SNERT (the\n"
-    "default for greyscale input) puts the nodes on the trilinear iso-surface and spaces them out;\n"
-    "SNA only averages. Coordinates are physical (spacing, origin, direction).";
+  c.description = "Extracts a closed, 2-manifold, outward-oriented triangle mesh from a 3-D image (any format ITK\n"
+                  "reads, or a DICOM series directory) with SurfaceNets (thesis chapter 3) and writes it in the\n"
+                  "format OUTPUT's extension names (.vtk, .obj, .off, .gii, .byu). The object is the voxels\n"
+                  "above (or below) --iso; or the voxels equal to --label in a label image; or a segmentation\n"
+                  "(--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface. SNERT (the\n"
+                  "default for greyscale input) puts the nodes on the trilinear iso-surface and spaces them out;\n"
+                  "SNA only averages. Coordinates are physical (spacing, origin, direction).";
   c.options = {
     { "iso", "V", "iso-value of the object's boundary", "0 for a phantom" },
     { "inside", "above|below", "which side of --iso is the object", "above" },

@@ -127,7 +127,7 @@ inline itk::MeshExtraction::PhantomGrid
 ReadImageGrid(const std::string & path)
 {
   using ImageType = itk::Image<float, 3>;
-  auto reader = itk::ImageFileReader<ImageType>::New();
+  auto                             reader = itk::ImageFileReader<ImageType>::New();
   itk::MeshExtraction::PhantomGrid grid;
   if (IsDirectory(path))
   {
@@ -193,8 +193,8 @@ ReadMeshFile(const std::string & path)
   IOMeshType::Pointer mesh = reader->GetOutput();
   if (mesh->GetNumberOfPoints() == 0 || mesh->GetNumberOfCells() == 0)
   {
-    itkGenericExceptionMacro("cannot read mesh '" << path << "': it has " << mesh->GetNumberOfPoints()
-                                                  << " points and " << mesh->GetNumberOfCells() << " cells");
+    itkGenericExceptionMacro("cannot read mesh '" << path << "': it has " << mesh->GetNumberOfPoints() << " points and "
+                                                  << mesh->GetNumberOfCells() << " cells");
   }
   return mesh;
 }

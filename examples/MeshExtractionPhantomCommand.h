@@ -28,10 +28,10 @@ namespace MeshExtractionCLI
 // ------------------------------------------------------------------------------
 template <typename TPixel>
 inline void
-WritePhantom(ME::PhantomShape                    shape,
-             const ME::PhantomGrid &             grid,
-             const ME::PhantomImageParameters &  parameters,
-             const std::string &                 output)
+WritePhantom(ME::PhantomShape                   shape,
+             const ME::PhantomGrid &            grid,
+             const ME::PhantomImageParameters & parameters,
+             const std::string &                output)
 {
   using ImageType = itk::Image<TPixel, 3>;
   auto source = ME::MakePhantomImageSource<ImageType>(shape, grid, parameters);
@@ -55,8 +55,8 @@ RunPhantom(const Arguments & args)
   {
     throw UsageError("'phantom' expects NAME and OUTPUT (or 'list')");
   }
-  const ME::PhantomShape  shape = ShapeFromName(args.positional[0]);
-  const ME::PhantomGrid   grid = GridFromArguments(shape, args);
+  const ME::PhantomShape     shape = ShapeFromName(args.positional[0]);
+  const ME::PhantomGrid      grid = GridFromArguments(shape, args);
   ME::PhantomImageParameters p = ME::DefaultPhantomImageParameters(shape);
   if (args.Has("image-mode"))
   {
@@ -89,9 +89,8 @@ RunPhantom(const Arguments & args)
   p.edgeWidth = args.GetDouble("edge-width", p.edgeWidth);
   p.noiseStandardDeviation = args.GetDouble("noise", p.noiseStandardDeviation);
   p.noiseSeed = static_cast<std::uint64_t>(args.GetInteger("seed", static_cast<long>(p.noiseSeed)));
-  const std::string defaultType =
-    p.mode == itk::MeshExtractionEnums::PhantomImage::BinaryMask ? "uchar" : "float";
-  const std::string type = args.Get("pixel-type", defaultType);
+  const std::string   defaultType = p.mode == itk::MeshExtractionEnums::PhantomImage::BinaryMask ? "uchar" : "float";
+  const std::string   type = args.Get("pixel-type", defaultType);
   const std::string & output = args.positional[1];
   std::cerr << "phantom " << ME::PhantomShapeName(shape) << ": " << grid.size << " voxels of " << grid.spacing
             << " mm, " << p.mode << ", " << type << " -> " << output << '\n';
@@ -129,12 +128,11 @@ MakePhantomCommand()
   c.name = "phantom";
   c.summary = "write a phantom image (plane, sphere, two spheres, ellipsoid, torus, ...)";
   c.usage = "NAME OUTPUT [options]   |   meshextraction phantom list";
-  c.description =
-    "Renders one of the module's analytic phantoms into an image (any format ITK writes, by the\n"
-    "extension of OUTPUT). The surface is exact: `quality --phantom NAME --image OUTPUT` measures\n"
-    "meshes against it. Distance maps hold the signed distance in mm (negative inside, iso-value 0);\n"
-    "masks hold --inside / --outside; the chapter4-sphere is a blurred step edge (inside 100,\n"
-    "outside 0) to which --noise adds Gaussian noise. `phantom list` prints the names.";
+  c.description = "Renders one of the module's analytic phantoms into an image (any format ITK writes, by the\n"
+                  "extension of OUTPUT). The surface is exact: `quality --phantom NAME --image OUTPUT` measures\n"
+                  "meshes against it. Distance maps hold the signed distance in mm (negative inside, iso-value 0);\n"
+                  "masks hold --inside / --outside; the chapter4-sphere is a blurred step edge (inside 100,\n"
+                  "outside 0) to which --noise adds Gaussian noise. `phantom list` prints the names.";
   c.options = GridOptions();
   c.options.push_back({ "image-mode", "distance|mask|step", "what the voxels hold", "per phantom" });
   c.options.push_back({ "pixel-type", "TYPE", "uchar, short, ushort, float or double", "float; uchar for masks" });

@@ -31,10 +31,10 @@ namespace MeshExtractionCLI
 // ------------------------------------------------------------------------------
 struct MeasuredMesh
 {
-  std::string                               name;
-  ME::TriangleMeshQualityReport             quality;
-  bool                                      hasDistance{ false };
-  ME::MeshSurfaceDistanceReport             distance;
+  std::string                   name;
+  ME::TriangleMeshQualityReport quality;
+  bool                          hasDistance{ false };
+  ME::MeshSurfaceDistanceReport distance;
 };
 
 inline void
@@ -98,17 +98,17 @@ WriteJSON(const std::vector<MeasuredMesh> & meshes, const std::string & path)
 inline void
 PrintComparison(const std::vector<MeasuredMesh> & meshes, std::ostream & os)
 {
-  os << std::left << std::setw(28) << "mesh" << std::right << std::setw(10) << "triangles" << std::setw(9)
-     << "q_area" << std::setw(9) << "q_angle" << std::setw(9) << "<0.3 %" << std::setw(11) << "smooth" << std::setw(9)
-     << "val6 %" << std::setw(12) << "d_vert" << std::setw(12) << "d_face" << std::setw(12) << "hausdorff"
-     << std::setw(7) << "valid" << '\n';
+  os << std::left << std::setw(28) << "mesh" << std::right << std::setw(10) << "triangles" << std::setw(9) << "q_area"
+     << std::setw(9) << "q_angle" << std::setw(9) << "<0.3 %" << std::setw(11) << "smooth" << std::setw(9) << "val6 %"
+     << std::setw(12) << "d_vert" << std::setw(12) << "d_face" << std::setw(12) << "hausdorff" << std::setw(7)
+     << "valid" << '\n';
   for (const auto & m : meshes)
   {
     std::string name = m.name.size() > 27 ? "..." + m.name.substr(m.name.size() - 24) : m.name;
-    os << std::left << std::setw(28) << name << std::right << std::setw(10) << m.quality.numberOfTriangles
-       << std::fixed << std::setprecision(4) << std::setw(9) << m.quality.qArea.mean << std::setw(9)
-       << m.quality.qAngle.mean << std::setprecision(2) << std::setw(9) << 100 * m.quality.fractionQAngleBelow03
-       << std::setprecision(5) << std::setw(11) << m.quality.meanSmoothness << std::setprecision(1) << std::setw(9)
+    os << std::left << std::setw(28) << name << std::right << std::setw(10) << m.quality.numberOfTriangles << std::fixed
+       << std::setprecision(4) << std::setw(9) << m.quality.qArea.mean << std::setw(9) << m.quality.qAngle.mean
+       << std::setprecision(2) << std::setw(9) << 100 * m.quality.fractionQAngleBelow03 << std::setprecision(5)
+       << std::setw(11) << m.quality.meanSmoothness << std::setprecision(1) << std::setw(9)
        << 100 * m.quality.fractionValence6;
     if (m.hasDistance)
     {
@@ -127,8 +127,8 @@ inline int
 RunQuality(const Arguments & args)
 {
   // The reference for distances: a mesh file or a phantom's exact surface.
-  IOMeshType::Pointer                     referenceMesh;
-  itk::ImplicitSurfaceFunction::Pointer   referenceSurface;
+  IOMeshType::Pointer                   referenceMesh;
+  itk::ImplicitSurfaceFunction::Pointer referenceSurface;
   if (args.Has("reference-mesh") && args.Has("phantom"))
   {
     throw UsageError("give either --reference-mesh or --phantom, not both");
@@ -227,13 +227,12 @@ MakeQualityCommand()
   c.name = "quality";
   c.summary = "measure triangle quality, integrity and accuracy of meshes";
   c.usage = "MESH [MESH...] [options]";
-  c.description =
-    "Measures each mesh (any format ITK reads) with TriangleMeshQualityCalculator: q_area, q_angle,\n"
-    "q_length, angles, smoothness, valences, and integrity (degenerate, inverted, non-manifold,\n"
-    "holes, orientation, components, Euler characteristic, genus, self-intersections). With\n"
-    "--reference-mesh or --phantom it also measures distances with MeshSurfaceDistanceCalculator:\n"
-    "mean (thesis eq. 3.7), RMS, maximum, symmetric Hausdorff. Several meshes get a side-by-side\n"
-    "table. Exit status 1 with --require-valid if a mesh is not a valid closed surface.";
+  c.description = "Measures each mesh (any format ITK reads) with TriangleMeshQualityCalculator: q_area, q_angle,\n"
+                  "q_length, angles, smoothness, valences, and integrity (degenerate, inverted, non-manifold,\n"
+                  "holes, orientation, components, Euler characteristic, genus, self-intersections). With\n"
+                  "--reference-mesh or --phantom it also measures distances with MeshSurfaceDistanceCalculator:\n"
+                  "mean (thesis eq. 3.7), RMS, maximum, symmetric Hausdorff. Several meshes get a side-by-side\n"
+                  "table. Exit status 1 with --require-valid if a mesh is not a valid closed surface.";
   c.options = {
     { "reference-mesh", "FILE", "measure distances to this mesh", "" },
     { "phantom", "NAME", "measure distances to this phantom's exact surface", "" },

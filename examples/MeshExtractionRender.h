@@ -45,7 +45,7 @@ struct RenderOptions
   unsigned int height{ 480 };
   double       azimuthDegrees{ 35.0 };
   double       elevationDegrees{ 25.0 };
-  double       zoom{ 1.0 };            ///< >1 magnifies the centre of the view
+  double       zoom{ 1.0 }; ///< >1 magnifies the centre of the view
   bool         outlineTriangles{ false };
   /** Per-triangle value in [0, 1] mapped to colour (empty: grey). */
   const std::vector<double> * triangleValues{ nullptr };
@@ -59,8 +59,8 @@ QualityColour(double v)
     { 0.55, 0.0, 0.05 }, { 0.95, 0.45, 0.1 }, { 0.98, 0.85, 0.25 }, { 0.45, 0.8, 0.35 }, { 0.2, 0.45, 0.85 }
   };
   v = std::clamp(v, 0.0, 1.0) * 4.0;
-  const int    i = std::min(3, static_cast<int>(v));
-  const double t = v - i;
+  const int                    i = std::min(3, static_cast<int>(v));
+  const double                 t = v - i;
   itk::RGBPixel<unsigned char> c;
   for (unsigned int k = 0; k < 3; ++k)
   {
@@ -124,8 +124,8 @@ RenderMesh(const ME::IndexedTriangleMesh & mesh, const RenderOptions & o, const 
     const ME::Vec3 & b = projected[t[1]];
     const ME::Vec3 & c = projected[t[2]];
     // Normal in view space (screen y points down: flip it back).
-    ME::Vec3 n = ME::TriangleUnitNormal(ME::MakeVec3(a[0], -a[1], a[2]), ME::MakeVec3(b[0], -b[1], b[2]),
-                                        ME::MakeVec3(c[0], -c[1], c[2]));
+    ME::Vec3 n = ME::TriangleUnitNormal(
+      ME::MakeVec3(a[0], -a[1], a[2]), ME::MakeVec3(b[0], -b[1], b[2]), ME::MakeVec3(c[0], -c[1], c[2]));
     const double shade = 0.25 + 0.75 * std::abs(ME::Dot(n, light));
     PixelType    base;
     if (o.triangleValues != nullptr)
@@ -149,7 +149,8 @@ RenderMesh(const ME::IndexedTriangleMesh & mesh, const RenderOptions & o, const 
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({ a[0], b[0], c[0] }))));
     const int x1 = std::min(static_cast<int>(o.width) - 1, static_cast<int>(std::ceil(std::max({ a[0], b[0], c[0] }))));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({ a[1], b[1], c[1] }))));
-    const int y1 = std::min(static_cast<int>(o.height) - 1, static_cast<int>(std::ceil(std::max({ a[1], b[1], c[1] }))));
+    const int y1 =
+      std::min(static_cast<int>(o.height) - 1, static_cast<int>(std::ceil(std::max({ a[1], b[1], c[1] }))));
     for (int y = y0; y <= y1; ++y)
     {
       for (int x = x0; x <= x1; ++x)
@@ -163,7 +164,7 @@ RenderMesh(const ME::IndexedTriangleMesh & mesh, const RenderOptions & o, const 
         {
           continue;
         }
-        const double z = w0 * a[2] + w1 * b[2] + w2 * c[2];
+        const double      z = w0 * a[2] + w1 * b[2] + w2 * c[2];
         const std::size_t k = static_cast<std::size_t>(y) * o.width + x;
         if (z < depth[k])
         {

@@ -57,11 +57,11 @@ HtmlEscape(const std::string & text)
 
 /** Grouped bar chart of one histogram measure for every mesh, as SVG. */
 inline void
-WriteHistogramSVG(const std::vector<MeasuredMesh> &                                    meshes,
-                  const std::vector<std::string> &                                     names,
+WriteHistogramSVG(const std::vector<MeasuredMesh> &                                        meshes,
+                  const std::vector<std::string> &                                         names,
                   const std::function<const ME::ValueStatistics &(const MeasuredMesh &)> & measure,
-                  const std::string &                                                  title,
-                  const std::string &                                                  path)
+                  const std::string &                                                      title,
+                  const std::string &                                                      path)
 {
   static const char * colours[] = { "#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#edc948", "#b07aa1" };
   std::ofstream       out(path);
@@ -89,8 +89,8 @@ WriteHistogramSVG(const std::vector<MeasuredMesh> &                             
   const double plotHeight = height - bottom - top;
   const double group = plotWidth / bins;
   const double bar = 0.8 * group / meshes.size();
-  out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='"
-      << height + 18 * meshes.size() << "' font-family='sans-serif' font-size='11'>\n";
+  out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height + 18 * meshes.size()
+      << "' font-family='sans-serif' font-size='11'>\n";
   out << "<text x='" << left << "' y='18' font-size='13'>" << HtmlEscape(title) << "</text>\n";
   out << "<line x1='" << left << "' y1='" << top + plotHeight << "' x2='" << left + plotWidth << "' y2='"
       << top + plotHeight << "' stroke='black'/>\n";
@@ -117,8 +117,8 @@ WriteHistogramSVG(const std::vector<MeasuredMesh> &                             
     {
       const double fraction = s.count ? static_cast<double>(s.histogram[b]) / s.count : 0.0;
       const double h = plotHeight * fraction / largest;
-      out << "<rect x='" << left + group * b + 0.1 * group + bar * m << "' y='" << top + plotHeight - h
-          << "' width='" << bar << "' height='" << h << "' fill='" << colours[m % 7] << "'/>\n";
+      out << "<rect x='" << left + group * b + 0.1 * group + bar * m << "' y='" << top + plotHeight - h << "' width='"
+          << bar << "' height='" << h << "' fill='" << colours[m % 7] << "'/>\n";
     }
     const double y = height + 18 * m;
     out << "<rect x='" << left << "' y='" << y - 10 << "' width='12' height='12' fill='" << colours[m % 7]
@@ -138,8 +138,8 @@ RunReport(const Arguments & args)
   if (args.Has("phantom"))
   {
     const ME::PhantomShape shape = ShapeFromName(args.Get("phantom"));
-    surface = ME::MakePhantomSurface(shape, args.Has("image") ? ReadImageGrid(args.Get("image"))
-                                                              : GridFromArguments(shape, args));
+    surface = ME::MakePhantomSurface(
+      shape, args.Has("image") ? ReadImageGrid(args.Get("image")) : GridFromArguments(shape, args));
   }
   if (args.Has("reference-mesh"))
   {
@@ -194,11 +194,17 @@ RunReport(const Arguments & args)
   WriteJSON(meshes, directory + "/report.json");
   WriteHistogramsCSV(meshes, directory + "/histograms.csv");
   WriteHistogramSVG(
-    meshes, names, [](const MeasuredMesh & m) -> const ME::ValueStatistics & { return m.quality.qArea; },
-    "q_area = 4 sqrt(3) A / sum e^2 (share of triangles)", directory + "/q_area.svg");
+    meshes,
+    names,
+    [](const MeasuredMesh & m) -> const ME::ValueStatistics & { return m.quality.qArea; },
+    "q_area = 4 sqrt(3) A / sum e^2 (share of triangles)",
+    directory + "/q_area.svg");
   WriteHistogramSVG(
-    meshes, names, [](const MeasuredMesh & m) -> const ME::ValueStatistics & { return m.quality.qAngle; },
-    "q_angle = smallest / largest angle (share of triangles)", directory + "/q_angle.svg");
+    meshes,
+    names,
+    [](const MeasuredMesh & m) -> const ME::ValueStatistics & { return m.quality.qAngle; },
+    "q_angle = smallest / largest angle (share of triangles)",
+    directory + "/q_angle.svg");
 
   std::ofstream html(directory + "/index.html");
   if (!html)
@@ -216,8 +222,11 @@ RunReport(const Arguments & args)
   html << "<p>Measured with TriangleMeshQualityCalculator and MeshSurfaceDistanceCalculator (thesis "
           "sections 2.2.2, 3.3, 4.2.3). q_area and q_angle are 1 for an equilateral triangle. Distances are "
           "in mm"
-       << (surface ? " to the phantom's exact surface" : referenceMesh ? " to the reference mesh" : "")
-       << ".</p>\n<table><tr><th>mesh</th><th>triangles</th><th>mean q_area</th><th>mean q_angle</th><th>q_angle&lt;0.3</th>"
+       << (surface         ? " to the phantom's exact surface"
+           : referenceMesh ? " to the reference mesh"
+                           : "")
+       << ".</p>\n<table><tr><th>mesh</th><th>triangles</th><th>mean q_area</th><th>mean "
+          "q_angle</th><th>q_angle&lt;0.3</th>"
           "<th>smoothness</th><th>valence 6</th><th>mean dist. vertices</th><th>mean dist. centroids</th>"
           "<th>Hausdorff</th><th>components</th><th>genus</th><th>closed, manifold, oriented, no defects</th></tr>\n";
   for (std::size_t m = 0; m < meshes.size(); ++m)
@@ -225,8 +234,8 @@ RunReport(const Arguments & args)
     const auto & q = meshes[m].quality;
     html << "<tr><td>" << HtmlEscape(names[m]) << "</td><td>" << q.numberOfTriangles << "</td><td>" << std::fixed
          << std::setprecision(3) << q.qArea.mean << "</td><td>" << q.qAngle.mean << "</td><td>" << std::setprecision(2)
-         << 100.0 * q.fractionQAngleBelow03 << " %</td><td>" << std::setprecision(4) << q.meanSmoothness
-         << "</td><td>" << std::setprecision(1) << 100.0 * q.fractionValence6 << " %</td>";
+         << 100.0 * q.fractionQAngleBelow03 << " %</td><td>" << std::setprecision(4) << q.meanSmoothness << "</td><td>"
+         << std::setprecision(1) << 100.0 * q.fractionValence6 << " %</td>";
     if (meshes[m].hasDistance)
     {
       const auto & d = meshes[m].distance;
@@ -270,11 +279,10 @@ MakeReportCommand()
   c.name = "report";
   c.summary = "write an HTML report of meshes: quality table, histograms, renderings";
   c.usage = "OUTDIR MESH [MESH...] [options]";
-  c.description =
-    "Measures each mesh like 'quality' and writes OUTDIR/index.html with a table of the figures,\n"
-    "q_area and q_angle histograms (SVG) and two renderings per mesh (PNG, rendered in software:\n"
-    "shaded, and coloured by q_area with the triangles outlined), plus report.json and\n"
-    "histograms.csv. Distances are measured to --phantom's exact surface or --reference-mesh.";
+  c.description = "Measures each mesh like 'quality' and writes OUTDIR/index.html with a table of the figures,\n"
+                  "q_area and q_angle histograms (SVG) and two renderings per mesh (PNG, rendered in software:\n"
+                  "shaded, and coloured by q_area with the triangles outlined), plus report.json and\n"
+                  "histograms.csv. Distances are measured to --phantom's exact surface or --reference-mesh.";
   c.options = {
     { "phantom", "NAME", "measure distances to this phantom's exact surface", "" },
     { "image", "FILE", "the phantom's grid, from this image", "" },

@@ -39,7 +39,9 @@ namespace
 std::vector<Command>
 Commands()
 {
-  return { MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(), MakeQualityCommand(), MakeReportCommand() };
+  return {
+    MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(), MakeQualityCommand(), MakeReportCommand()
+  };
 }
 void
 PrintUsage(std::ostream & os, const std::vector<Command> & commands)

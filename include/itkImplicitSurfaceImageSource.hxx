@@ -32,8 +32,8 @@ namespace itk
 {
 template <typename TOutputImage>
 ImplicitSurfaceImageSource<TOutputImage>::ImplicitSurfaceImageSource()
-  : m_InsideValue(NumericTraits<OutputPixelType>::OneValue())
-  , m_OutsideValue(NumericTraits<OutputPixelType>::ZeroValue())
+    : m_InsideValue(NumericTraits<OutputPixelType>::OneValue())
+    , m_OutsideValue(NumericTraits<OutputPixelType>::ZeroValue())
 {
   this->DynamicMultiThreadingOn();
 }
@@ -65,7 +65,7 @@ ImplicitSurfaceImageSource<TOutputImage>::NormalDeviate(std::uint64_t seed, std:
   const std::uint64_t key = mix(seed + golden);
   const std::uint64_t a = mix(key + (2 * index + 1) * golden);
   const std::uint64_t b = mix(key + (2 * index + 2) * golden);
-  constexpr double    scale = 1.0 / 9007199254740992.0; // 2^-53
+  constexpr double    scale = 1.0 / 9007199254740992.0;                  // 2^-53
   const double        u1 = (static_cast<double>(a >> 11) + 1.0) * scale; // (0, 1]
   const double        u2 = static_cast<double>(b >> 11) * scale;         // [0, 1)
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * itk::Math::pi * u2);
@@ -144,7 +144,7 @@ ImplicitSurfaceImageSource<TOutputImage>::DynamicThreadedGenerateData(
 
   TotalProgressReporter progress(this, output->GetRequestedRegion().GetNumberOfPixels());
 
-  typename SurfaceType::InputType                point;
+  typename SurfaceType::InputType               point;
   ImageRegionIteratorWithIndex<OutputImageType> it(output, outputRegionForThread);
   for (it.GoToBegin(); !it.IsAtEnd(); ++it)
   {

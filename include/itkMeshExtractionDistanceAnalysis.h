@@ -50,11 +50,11 @@ ComputeDistanceStatistics(const std::vector<double> & distances, const std::vect
 /** \brief Distances between a mesh and a reference surface. \ingroup MeshExtraction */
 struct MeshExtraction_EXPORT MeshSurfaceDistanceReport
 {
-  DistanceStatistics vertices;          ///< mesh vertices -> reference
-  DistanceStatistics faceCentroids;     ///< mesh triangle centroids -> reference
-  DistanceStatistics meshSamples;       ///< vertices, centroids and lattice samples -> reference
-  DistanceStatistics referenceSamples;  ///< reference samples -> mesh (the reverse direction)
-  double             hausdorff{ 0.0 };  ///< max(meshSamples.maximum, referenceSamples.maximum)
+  DistanceStatistics vertices;           ///< mesh vertices -> reference
+  DistanceStatistics faceCentroids;      ///< mesh triangle centroids -> reference
+  DistanceStatistics meshSamples;        ///< vertices, centroids and lattice samples -> reference
+  DistanceStatistics referenceSamples;   ///< reference samples -> mesh (the reverse direction)
+  double             hausdorff{ 0.0 };   ///< max(meshSamples.maximum, referenceSamples.maximum)
   bool               symmetric{ false }; ///< the reverse direction was measured
   std::string        referenceDescription;
 
@@ -76,24 +76,26 @@ struct SurfaceDistanceOptions
   bool symmetric{ true };
   /** Spacing (mm) of the samples taken on an implicit reference surface for the
    * reverse direction; 0 = half the mesh's mean edge length. */
-  double implicitSampleSpacing{ 0.0 };
+  double       implicitSampleSpacing{ 0.0 };
   unsigned int numberOfWorkUnits{ 0 };
 };
 
 /** Unsigned distance from every point to the triangles of `tree` (exact
  * point-to-triangle distance), multithreaded. */
 MeshExtraction_EXPORT std::vector<double>
-DistancesToTriangles(const std::vector<Vec3> & points, const TriangleAABBTree & tree, unsigned int numberOfWorkUnits = 0);
+                      DistancesToTriangles(const std::vector<Vec3> & points,
+                                           const TriangleAABBTree &  tree,
+                                           unsigned int              numberOfWorkUnits = 0);
 
 /** Signed distance from every point to an implicit surface, multithreaded. */
 MeshExtraction_EXPORT std::vector<double>
-SignedDistancesToSurface(const std::vector<Vec3> &       points,
-                         const ImplicitSurfaceFunction & surface,
-                         unsigned int                    numberOfWorkUnits = 0);
+                      SignedDistancesToSurface(const std::vector<Vec3> &       points,
+                                               const ImplicitSurfaceFunction & surface,
+                                               unsigned int                    numberOfWorkUnits = 0);
 
 /** Vertices, centroids and (samplingLevel > 0) barycentric lattice points of a mesh. */
 MeshExtraction_EXPORT std::vector<Vec3>
-SampleTriangles(const IndexedTriangleMesh & mesh, unsigned int samplingLevel);
+                      SampleTriangles(const IndexedTriangleMesh & mesh, unsigned int samplingLevel);
 
 /** Points on an implicit surface no farther than sqrt(3) * spacing from any
  * surface point: grid points near the surface projected onto it. An unbounded

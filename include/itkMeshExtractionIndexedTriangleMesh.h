@@ -87,16 +87,16 @@ struct MeshTopology
   std::vector<std::uint32_t> vertexEdgeOffsets;
   std::vector<std::uint32_t> vertexEdges;
 
-  std::size_t numberOfReferencedVertices{ 0 };
-  std::size_t numberOfBoundaryEdges{ 0 };
-  std::size_t numberOfNonManifoldEdges{ 0 };
-  std::size_t numberOfInconsistentEdges{ 0 }; ///< two triangles running the edge the same way
-  std::size_t numberOfNonManifoldVertices{ 0 };
-  std::size_t numberOfComponents{ 0 };
-  std::size_t numberOfBoundaryLoops{ 0 };
-  std::vector<std::uint32_t> triangleComponent;   ///< component of each triangle
-  std::vector<bool>          vertexIsInterior;    ///< referenced, manifold, not on a boundary
-  std::vector<bool>          vertexIsNonManifold; ///< its triangles form more than one fan
+  std::size_t                numberOfReferencedVertices{ 0 };
+  std::size_t                numberOfBoundaryEdges{ 0 };
+  std::size_t                numberOfNonManifoldEdges{ 0 };
+  std::size_t                numberOfInconsistentEdges{ 0 }; ///< two triangles running the edge the same way
+  std::size_t                numberOfNonManifoldVertices{ 0 };
+  std::size_t                numberOfComponents{ 0 };
+  std::size_t                numberOfBoundaryLoops{ 0 };
+  std::vector<std::uint32_t> triangleComponent;      ///< component of each triangle
+  std::vector<bool>          vertexIsInterior;       ///< referenced, manifold, not on a boundary
+  std::vector<bool>          vertexIsNonManifold;    ///< its triangles form more than one fan
   std::vector<std::uint32_t> componentBoundaryLoops; ///< boundary loops per component
 
   /** The other triangle on the side of a manifold edge, or -1 (max uint32). */
@@ -160,9 +160,9 @@ MakeIndexedTriangleMesh(const TMesh & mesh)
   {
     maxId = std::max<IdentifierType>(maxId, it.Index());
   }
-  constexpr std::uint32_t       missing = std::numeric_limits<std::uint32_t>::max();
-  const bool                    dense = maxId < 4 * static_cast<IdentifierType>(points->Size()) + 1024;
-  std::vector<std::uint32_t>    denseMap(dense ? maxId + 1 : 0, missing);
+  constexpr std::uint32_t    missing = std::numeric_limits<std::uint32_t>::max();
+  const bool                 dense = maxId < 4 * static_cast<IdentifierType>(points->Size()) + 1024;
+  std::vector<std::uint32_t> denseMap(dense ? maxId + 1 : 0, missing);
   std::unordered_map<IdentifierType, std::uint32_t> sparseMap;
   for (auto it = points->Begin(); it != points->End(); ++it)
   {

@@ -39,7 +39,7 @@
 #  define itkVirtualGetNameOfClassMacro(thisClass) itkTypeMacroNoParent(thisClass)
 #endif
 
-#define MESHEXTRACTION_ITK_VERSION_AT_LEAST(major, minor)                                                          \
+#define MESHEXTRACTION_ITK_VERSION_AT_LEAST(major, minor)                                                              \
   ((ITK_VERSION_MAJOR > (major)) || (ITK_VERSION_MAJOR == (major) && ITK_VERSION_MINOR >= (minor)))
 
 #endif

@@ -110,12 +110,12 @@ enum class PhantomShape : std::uint8_t
 
 /** Writes the command-line name of the shape ("two-spheres", ...). */
 MeshExtraction_EXPORT std::ostream &
-operator<<(std::ostream & out, PhantomShape shape);
+                      operator<<(std::ostream & out, PhantomShape shape);
 
 /** The command-line name: "plane", "sphere", "two-spheres", "chapter4-sphere",
  * "ellipsoid", "indented-sphere", "torus", "thin-plate", "narrow-cleft". */
 MeshExtraction_EXPORT std::string
-PhantomShapeName(PhantomShape shape);
+                      PhantomShapeName(PhantomShape shape);
 
 /** The shape with that command-line name; throws an itk::ExceptionObject that lists
  * the valid names otherwise. */
@@ -124,11 +124,11 @@ PhantomShapeFromName(const std::string & name);
 
 /** Every shape, in declaration order. */
 MeshExtraction_EXPORT std::vector<PhantomShape>
-AllPhantomShapes();
+                      AllPhantomShapes();
 
 /** The valid names separated by ", " (for usage messages). */
 MeshExtraction_EXPORT std::string
-PhantomShapeNameList();
+                      PhantomShapeNameList();
 
 /** The image grid a phantom is placed in (the geometry of the image it is rendered
  * into). Default: 64^3 voxels of 1 mm, origin (0,0,0), identity direction. */
@@ -149,7 +149,7 @@ DefaultPhantomGrid(PhantomShape shape);
 
 /** The physical centre of the grid: origin + direction * (spacing .* (size - 1) / 2). */
 MeshExtraction_EXPORT Point<double, 3>
-PhantomGridCenter(const PhantomGrid & grid);
+                      PhantomGridCenter(const PhantomGrid & grid);
 
 /** min_k size[k] * spacing[k]. */
 MeshExtraction_EXPORT double
@@ -159,7 +159,7 @@ PhantomGridSmallestExtent(const PhantomGrid & grid);
  * grid (zero size, non-positive spacing, non-finite origin, or a direction that is
  * not orthogonal within 1e-4). */
 MeshExtraction_EXPORT ImplicitSurfaceFunction::Pointer
-MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid);
+                      MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid);
 
 /** How a phantom is rendered by default (the settings of ImplicitSurfaceImageSource). */
 struct MeshExtraction_EXPORT PhantomImageParameters
@@ -180,7 +180,7 @@ DefaultPhantomImageParameters(PhantomShape shape);
 
 /** DefaultPhantomImageParameters(shape).mode. */
 MeshExtraction_EXPORT MeshExtractionEnums::PhantomImage
-DefaultPhantomImageMode(PhantomShape shape);
+                      DefaultPhantomImageMode(PhantomShape shape);
 
 /** An ImplicitSurfaceImageSource for the phantom: grid geometry, surface and image
  * settings set, not yet updated. */

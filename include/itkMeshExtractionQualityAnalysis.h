@@ -97,7 +97,7 @@ struct MeshExtraction_EXPORT TriangleMeshQualityReport
   // Vertices
   double                   meanSmoothness{ 0.0 }; ///< mean |2 pi - sum of angles| over interior vertices (sec. 3.3)
   std::size_t              numberOfInteriorVertices{ 0 };
-  std::vector<std::size_t> valenceHistogram; ///< [d] = number of vertices with d incident edges
+  std::vector<std::size_t> valenceHistogram;        ///< [d] = number of vertices with d incident edges
   double                   fractionValence6{ 0.0 }; ///< share of referenced vertices with valence 6
 
   // Integrity
@@ -117,7 +117,7 @@ struct MeshExtraction_EXPORT TriangleMeshQualityReport
   std::int64_t selfIntersectingPairs{ -1 };
   std::int64_t selfIntersectingTriangles{ -1 };
   std::vector<std::pair<std::uint32_t, std::uint32_t>> intersectingPairs; ///< the first few, by triangle index
-  double totalArea{ 0.0 };
+  double                                               totalArea{ 0.0 };
   double enclosedVolume{ 0.0 }; ///< signed (divergence theorem); meaningful for closed surfaces
 
   bool
@@ -176,9 +176,9 @@ class TriangleAABBTree;
  * contain the triangles' current positions (see TriangleAABBTree::Build): repeated
  * checks while vertices move inside those boxes need no rebuild. */
 MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
-FindSelfIntersections(const IndexedTriangleMesh &        mesh,
-                      const std::vector<std::uint32_t> & queries,
-                      const TriangleAABBTree &           tree);
+                      FindSelfIntersections(const IndexedTriangleMesh &        mesh,
+                                            const std::vector<std::uint32_t> & queries,
+                                            const TriangleAABBTree &           tree);
 
 } // namespace MeshExtraction
 } // namespace itk

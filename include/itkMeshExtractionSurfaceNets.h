@@ -53,7 +53,7 @@ struct MeshExtraction_EXPORT SurfaceNetsCellTable
 {
   std::array<std::array<std::uint8_t, 2>, 12> edgeCorners; ///< corners at the low and high end of each edge
   std::array<std::array<std::uint8_t, 4>, 6>  faceCorners;
-  std::array<std::array<std::uint8_t, 4>, 6>  faceEdges;   ///< faceEdges[f][i] joins faceCorners[f][i] and [i+1]
+  std::array<std::array<std::uint8_t, 4>, 6>  faceEdges;      ///< faceEdges[f][i] joins faceCorners[f][i] and [i+1]
   std::array<std::uint8_t, 256>               ambiguousFaces; ///< bit f: face f has four crossing edges
 
   std::uint8_t
@@ -73,8 +73,8 @@ struct MeshExtraction_EXPORT SurfaceNetsCellTable
 
 private:
   SurfaceNetsCellTable();
-  std::vector<std::uint8_t>                 m_NumberOfSheets;
-  std::vector<std::array<std::int8_t, 12>>  m_SheetOfEdge;
+  std::vector<std::uint8_t>                m_NumberOfSheets;
+  std::vector<std::array<std::int8_t, 12>> m_SheetOfEdge;
 };
 
 /** A surface cell: the lower-corner voxel index of the cell (each in [-1, N-1])
@@ -97,18 +97,18 @@ struct SurfaceCell
 struct MeshExtraction_EXPORT SurfaceNet
 {
   std::array<std::int64_t, 3> size{ { 0, 0, 0 } }; ///< image size in voxels
-  std::vector<SurfaceCell>    cells;                 ///< sorted by (z, y, x)
-  std::vector<std::uint32_t>  rowStart;              ///< cells of cell-row (y, z): [rowStart[r], rowStart[r+1])
+  std::vector<SurfaceCell>    cells;               ///< sorted by (z, y, x)
+  std::vector<std::uint32_t>  rowStart;            ///< cells of cell-row (y, z): [rowStart[r], rowStart[r+1])
 
-  std::vector<Vec3>          positions;   ///< node positions, continuous index
-  std::vector<Vec3>          boxLower;    ///< node constraint box, continuous index
-  std::vector<Vec3>          boxUpper;
-  std::vector<std::uint32_t> nodeCell;    ///< cell of each node
+  std::vector<Vec3>                         positions; ///< node positions, continuous index
+  std::vector<Vec3>                         boxLower;  ///< node constraint box, continuous index
+  std::vector<Vec3>                         boxUpper;
+  std::vector<std::uint32_t>                nodeCell; ///< cell of each node
   std::vector<std::array<std::uint32_t, 4>> quads;
-  std::vector<std::uint8_t>  quadAxis;    ///< axis of the crossing voxel edge, +4 if outward is -axis
-  std::vector<std::uint32_t> neighborStart; ///< node links (the quads' edges): compressed rows
-  std::vector<std::uint32_t> neighbors;
-  std::size_t                numberOfSplitCells{ 0 };
+  std::vector<std::uint8_t>                 quadAxis;      ///< axis of the crossing voxel edge, +4 if outward is -axis
+  std::vector<std::uint32_t>                neighborStart; ///< node links (the quads' edges): compressed rows
+  std::vector<std::uint32_t>                neighbors;
+  std::size_t                               numberOfSplitCells{ 0 };
 
   /** Index of the surface cell with lower corner (x, y, z), or -1. */
   std::int64_t
@@ -145,21 +145,21 @@ enum class QuadSplit : std::uint8_t
  * voxel-edge direction; then the other diagonal is used. `polygons` receives
  * triangles, or quads for KeepQuads. */
 MeshExtraction_EXPORT void
-MakeSurfaceNetFaces(const SurfaceNet &                     net,
-                    const Vec3 &                           origin,
-                    const Matrix<double, 3, 3> &           indexToPhysical,
-                    QuadSplit                              split,
-                    std::vector<Vec3> &                    points,
+MakeSurfaceNetFaces(const SurfaceNet &                          net,
+                    const Vec3 &                                origin,
+                    const Matrix<double, 3, 3> &                indexToPhysical,
+                    QuadSplit                                   split,
+                    std::vector<Vec3> &                         points,
                     std::vector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                         polygonSize);
+                    unsigned int &                              polygonSize);
 
 /** Node positions in physical space: origin + matrix * index, rounded to float when
  * the output mesh stores float coordinates (so that checks see what is written). */
 MeshExtraction_EXPORT std::vector<Vec3>
-ToPhysical(const std::vector<Vec3> &    index,
-           const Vec3 &                 origin,
-           const Matrix<double, 3, 3> & indexToPhysical,
-           bool                         roundToFloat = false);
+                      ToPhysical(const std::vector<Vec3> &    index,
+                                 const Vec3 &                 origin,
+                                 const Matrix<double, 3, 3> & indexToPhysical,
+                                 bool                         roundToFloat = false);
 
 /** Stage 3b of SurfaceNets: where relaxed faces cross each other (two sheets
  * pulled toward one iso-surface, e.g. where the object touches itself), move the
@@ -170,12 +170,12 @@ ToPhysical(const std::vector<Vec3> &    index,
  * TriangleMeshQualityCalculator on the physical positions that will be written
  * (rounded to float with `roundToFloat`). Returns the number of nodes moved back. */
 MeshExtraction_EXPORT std::size_t
-RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
-                                  const std::vector<Vec3> &    initial,
-                                  const Vec3 &                 origin,
-                                  const Matrix<double, 3, 3> & indexToPhysical,
-                                  QuadSplit                    split,
-                                  bool                         roundToFloat = false);
+                      RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
+                                                        const std::vector<Vec3> &    initial,
+                                                        const Vec3 &                 origin,
+                                                        const Matrix<double, 3, 3> & indexToPhysical,
+                                                        QuadSplit                    split,
+                                                        bool                         roundToFloat = false);
 
 } // namespace MeshExtraction
 } // namespace itk

@@ -72,11 +72,11 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
     spread[c] = static_cast<std::uint8_t>((c & 1u) | ((c & 2u) << 1) | ((c & 4u) << 2) | ((c & 8u) << 3));
   }
 
-  const std::size_t numberOfLayers = static_cast<std::size_t>(nz + 1); // cell layers z = -1 .. nz-1
-  const std::size_t layersPerBlock = std::max<std::size_t>(1, numberOfLayers / 64);
-  const std::size_t numberOfBlocks = (numberOfLayers + layersPerBlock - 1) / layersPerBlock;
-  std::vector<std::vector<SurfaceCell>>                  found(numberOfBlocks);
-  std::vector<SurfaceNetsClassificationStatistics>       statistics(numberOfBlocks);
+  const std::size_t                     numberOfLayers = static_cast<std::size_t>(nz + 1); // cell layers z = -1 .. nz-1
+  const std::size_t                     layersPerBlock = std::max<std::size_t>(1, numberOfLayers / 64);
+  const std::size_t                     numberOfBlocks = (numberOfLayers + layersPerBlock - 1) / layersPerBlock;
+  std::vector<std::vector<SurfaceCell>> found(numberOfBlocks);
+  std::vector<SurfaceNetsClassificationStatistics> statistics(numberOfBlocks);
 
   ParallelForBlocks(
     numberOfLayers,
@@ -86,10 +86,10 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
       // A slice of inside flags and, per voxel row, the first and last inside x.
       struct Slice
       {
-        std::int64_t                z{ std::numeric_limits<std::int64_t>::min() };
-        std::vector<std::uint8_t>   flags;
-        std::vector<std::int64_t>   first;
-        std::vector<std::int64_t>   last;
+        std::int64_t              z{ std::numeric_limits<std::int64_t>::min() };
+        std::vector<std::uint8_t> flags;
+        std::vector<std::int64_t> first;
+        std::vector<std::int64_t> last;
       };
       Slice slices[2];
       auto  fill = [&](Slice & s, std::int64_t z) {
@@ -195,11 +195,14 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
           for (std::int64_t x = xFirst - 1; x <= xLast; ++x)
           {
             const unsigned int next = column(x + 1);
-            const auto configuration = static_cast<std::uint8_t>(spread[previous] | (spread[next] << 1));
+            const auto         configuration = static_cast<std::uint8_t>(spread[previous] | (spread[next] << 1));
             if (configuration != 0 && configuration != 255)
             {
-              cells.push_back({ static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), static_cast<std::int32_t>(z),
-                                configuration, 0 });
+              cells.push_back({ static_cast<std::int32_t>(x),
+                                static_cast<std::int32_t>(y),
+                                static_cast<std::int32_t>(z),
+                                configuration,
+                                0 });
             }
             previous = next;
           }

@@ -65,10 +65,10 @@ struct EdgeSwapRecord
  * A triangle takes part in at most one swap per sweep, so each swap can be undone
  * on its own. `physical` are the node positions in millimetres. */
 MeshExtraction_EXPORT std::vector<EdgeSwapRecord>
-SwapEdges(const std::vector<Vec3> &          physical,
-          SurfaceNetTriangles &              mesh,
-          const EdgeSwapParameters &         parameters,
-          const std::vector<std::uint64_t> * refused = nullptr);
+                      SwapEdges(const std::vector<Vec3> &          physical,
+                                SurfaceNetTriangles &              mesh,
+                                const EdgeSwapParameters &         parameters,
+                                const std::vector<std::uint64_t> * refused = nullptr);
 
 /** Key of the undirected edge (u, v), for the sorted list of refused edges. */
 inline std::uint64_t
@@ -85,10 +85,10 @@ constexpr double FoldCosine = -0.5;
  * neighbour, until none does; their edges are added to `refused` (kept sorted) so
  * later sweeps do not try them again. Returns the number of swaps undone. */
 MeshExtraction_EXPORT std::size_t
-UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
-                      SurfaceNetTriangles &         mesh,
-                      std::vector<EdgeSwapRecord> & swaps,
-                      std::vector<std::uint64_t> *  refused = nullptr);
+                      UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
+                                            SurfaceNetTriangles &         mesh,
+                                            std::vector<EdgeSwapRecord> & swaps,
+                                            std::vector<std::uint64_t> *  refused = nullptr);
 
 /** After nodes moved from `start` to `positions` (continuous index), pull back the
  * nodes of triangles that flipped against their orientation at `start`, became
@@ -98,13 +98,13 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
  * physical positions that will be written (`roundToFloat`). Returns the number of
  * nodes pulled back. */
 MeshExtraction_EXPORT std::size_t
-PullBackInvalidMoves(std::vector<Vec3> &          positions,
-                     const std::vector<Vec3> &    start,
-                     const SurfaceNetTriangles &  mesh,
-                     const Vec3 &                 origin,
-                     const Matrix<double, 3, 3> & indexToPhysical,
-                     double                       degenerateQAreaTolerance,
-                     bool                         roundToFloat = false);
+                      PullBackInvalidMoves(std::vector<Vec3> &          positions,
+                                           const std::vector<Vec3> &    start,
+                                           const SurfaceNetTriangles &  mesh,
+                                           const Vec3 &                 origin,
+                                           const Matrix<double, 3, 3> & indexToPhysical,
+                                           double                       degenerateQAreaTolerance,
+                                           bool                         roundToFloat = false);
 
 } // namespace MeshExtraction
 } // namespace itk

@@ -50,9 +50,9 @@ public:
 
   /** `outsideSign` is +1 if the outside of the object is above the iso-value, -1 if below. */
   SurfaceNetsSampler(const TImage * image, double isoValue, double outsideSign)
-    : m_Buffer(image->GetBufferPointer())
-    , m_IsoValue(isoValue)
-    , m_OutsideSign(outsideSign)
+      : m_Buffer(image->GetBufferPointer())
+      , m_IsoValue(isoValue)
+      , m_OutsideSign(outsideSign)
   {
     const auto region = image->GetBufferedRegion();
     for (unsigned int d = 0; d < 3; ++d)
@@ -91,7 +91,7 @@ public:
     double             c[8];
     if (x >= 0 && y >= 0 && z >= 0 && x + 1 < m_Size[0] && y + 1 < m_Size[1] && z + 1 < m_Size[2])
     {
-      const PixelType * b = m_Buffer + (z * m_Size[1] + y) * m_Size[0] + x;
+      const PixelType *  b = m_Buffer + (z * m_Size[1] + y) * m_Size[0] + x;
       const std::int64_t sy = m_Size[0];
       const std::int64_t sz = m_Size[0] * m_Size[1];
       c[0] = b[0];
@@ -160,7 +160,7 @@ class SurfaceNetsGaussianGradient
 {
 public:
   SurfaceNetsGaussianGradient(const TImage * image, const SurfaceNet & net, double sigma)
-    : m_Net(net)
+      : m_Net(net)
   {
     const auto region = image->GetBufferedRegion();
     for (unsigned int d = 0; d < 3; ++d)
@@ -279,10 +279,10 @@ struct SurfaceNetsRelaxationParameters
   bool                      sequential{ false };          ///< average, then project, within each iteration (3.2.4)
   /** The gradient is the sampler's central differences: cache them, with the voxel
    * values, at the 8 corners of each node's cell (set by the filter). */
-  bool                      centralDifferences{ true };
-  double                    isoValue{ 0.0 };
-  Matrix<double, 3, 3>      indexToPhysical;              ///< direction * diag(spacing)
-  unsigned int              numberOfWorkUnits{ 0 };
+  bool                 centralDifferences{ true };
+  double               isoValue{ 0.0 };
+  Matrix<double, 3, 3> indexToPhysical; ///< direction * diag(spacing)
+  unsigned int         numberOfWorkUnits{ 0 };
 };
 
 struct SurfaceNetsRelaxationResult
@@ -320,11 +320,11 @@ ConstrainToBox(const Vec3 & p, const Vec3 & d, const Vec3 & lower, const Vec3 & 
  * Deterministic for any number of threads. \ingroup MeshExtraction */
 template <typename TSampler, typename TGradient>
 SurfaceNetsRelaxationResult
-RelaxSurfaceNet(SurfaceNet &                              net,
-                const TSampler *                          sampler,
-                TGradient &&                              gradient,
-                const SurfaceNetsRelaxationParameters &   parameters,
-                const std::function<void(double)> &       progress = nullptr)
+RelaxSurfaceNet(SurfaceNet &                            net,
+                const TSampler *                        sampler,
+                TGradient &&                            gradient,
+                const SurfaceNetsRelaxationParameters & parameters,
+                const std::function<void(double)> &     progress = nullptr)
 {
   SurfaceNetsRelaxationResult result;
   if (parameters.kind == SurfaceNetsRelaxationKind::None || parameters.maximumNumberOfIterations == 0)
@@ -351,11 +351,11 @@ RelaxSurfaceNet(SurfaceNet &                              net,
   cellDiagonal = std::sqrt(cellDiagonal);
   const double h = 0.5 * smallestSpacing; // finite-difference step along the gradient (mm)
 
-  const std::size_t       numberOfNodes = net.positions.size();
-  std::vector<Vec3>       next(numberOfNodes);
-  constexpr std::size_t   BlockSize = 2048;
-  const std::size_t       numberOfBlocks = (numberOfNodes + BlockSize - 1) / BlockSize;
-  std::vector<double>     blockMaximum(numberOfBlocks);
+  const std::size_t     numberOfNodes = net.positions.size();
+  std::vector<Vec3>     next(numberOfNodes);
+  constexpr std::size_t BlockSize = 2048;
+  const std::size_t     numberOfBlocks = (numberOfNodes + BlockSize - 1) / BlockSize;
+  std::vector<double>   blockMaximum(numberOfBlocks);
 
   // Each node's cell: the 8 corner values and (central differences) corner
   // gradients, read once. Inside its cell a node's value, gradient and slope are then
@@ -385,9 +385,12 @@ RelaxSurfaceNet(SurfaceNet &                              net,
             cache[i].value[k] = static_cast<float>(sampler->Value(x, y, z));
             if (parameters.centralDifferences)
             {
-              cache[i].gradient[k][0] = static_cast<float>(0.5 * (sampler->Value(x + 1, y, z) - sampler->Value(x - 1, y, z)));
-              cache[i].gradient[k][1] = static_cast<float>(0.5 * (sampler->Value(x, y + 1, z) - sampler->Value(x, y - 1, z)));
-              cache[i].gradient[k][2] = static_cast<float>(0.5 * (sampler->Value(x, y, z + 1) - sampler->Value(x, y, z - 1)));
+              cache[i].gradient[k][0] =
+                static_cast<float>(0.5 * (sampler->Value(x + 1, y, z) - sampler->Value(x - 1, y, z)));
+              cache[i].gradient[k][1] =
+                static_cast<float>(0.5 * (sampler->Value(x, y + 1, z) - sampler->Value(x, y - 1, z)));
+              cache[i].gradient[k][2] =
+                static_cast<float>(0.5 * (sampler->Value(x, y, z + 1) - sampler->Value(x, y, z - 1)));
             }
           }
         }
@@ -407,11 +410,12 @@ RelaxSurfaceNet(SurfaceNet &                              net,
       if (u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0)
       {
         const CellCache & cc = cache[node];
-        const double      weight[8] = { (1 - u) * (1 - v) * (1 - w), u * (1 - v) * (1 - w), (1 - u) * v * (1 - w),
-                                   u * v * (1 - w),             (1 - u) * (1 - v) * w, u * (1 - v) * w,
-                                   (1 - u) * v * w,             u * v * w };
-        double            value = 0.0;
-        Vec3              G = MakeVec3(0, 0, 0);
+        const double      weight[8] = {
+               (1 - u) * (1 - v) * (1 - w), u * (1 - v) * (1 - w), (1 - u) * v * (1 - w), u * v * (1 - w),
+               (1 - u) * (1 - v) * w,       u * (1 - v) * w,       (1 - u) * v * w,       u * v * w
+        };
+        double value = 0.0;
+        Vec3   G = MakeVec3(0, 0, 0);
         for (unsigned int k = 0; k < 8; ++k)
         {
           value += weight[k] * cc.value[k];
@@ -436,12 +440,12 @@ RelaxSurfaceNet(SurfaceNet &                              net,
         n = g * (1.0 / magnitude);
         // Exact derivative of the trilinear field (index space) along n.
         const float * f = cc.value;
-        const double  du = (1 - v) * (1 - w) * (f[1] - f[0]) + v * (1 - w) * (f[3] - f[2]) + (1 - v) * w * (f[5] - f[4]) +
-                          v * w * (f[7] - f[6]);
-        const double dv = (1 - u) * (1 - w) * (f[2] - f[0]) + u * (1 - w) * (f[3] - f[1]) + (1 - u) * w * (f[6] - f[4]) +
-                          u * w * (f[7] - f[5]);
-        const double dw = (1 - u) * (1 - v) * (f[4] - f[0]) + u * (1 - v) * (f[5] - f[1]) + (1 - u) * v * (f[6] - f[2]) +
-                          u * v * (f[7] - f[3]);
+        const double  du = (1 - v) * (1 - w) * (f[1] - f[0]) + v * (1 - w) * (f[3] - f[2]) +
+                          (1 - v) * w * (f[5] - f[4]) + v * w * (f[7] - f[6]);
+        const double dv = (1 - u) * (1 - w) * (f[2] - f[0]) + u * (1 - w) * (f[3] - f[1]) +
+                          (1 - u) * w * (f[6] - f[4]) + u * w * (f[7] - f[5]);
+        const double dw = (1 - u) * (1 - v) * (f[4] - f[0]) + u * (1 - v) * (f[5] - f[1]) +
+                          (1 - u) * v * (f[6] - f[2]) + u * v * (f[7] - f[3]);
         const Vec3   direction = Minv * n; // index displacement per mm along n
         const double slope = du * direction[0] + dv * direction[1] + dw * direction[2];
         if (!(std::abs(slope) > 1e-3 * magnitude))

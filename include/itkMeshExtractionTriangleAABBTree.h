@@ -32,9 +32,11 @@ namespace MeshExtraction
 /** \brief Axis-aligned box in double precision. \ingroup MeshExtraction */
 struct AxisAlignedBox
 {
-  double lower[3]{ std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+  double lower[3]{ std::numeric_limits<double>::max(),
+                   std::numeric_limits<double>::max(),
                    std::numeric_limits<double>::max() };
-  double upper[3]{ std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(),
+  double upper[3]{ std::numeric_limits<double>::lowest(),
+                   std::numeric_limits<double>::lowest(),
                    std::numeric_limits<double>::lowest() };
 
   void
@@ -247,10 +249,10 @@ private:
     std::uint32_t  count{ 0 }; ///< number of primitives; 0 for an inner node
   };
 
-  const IndexedTriangleMesh *  m_Mesh{ nullptr };
-  std::vector<Node>            m_Nodes;
-  std::vector<std::uint32_t>   m_Triangles; ///< triangle of each primitive slot
-  std::vector<AxisAlignedBox>  m_Boxes;     ///< box of each primitive slot
+  const IndexedTriangleMesh * m_Mesh{ nullptr };
+  std::vector<Node>           m_Nodes;
+  std::vector<std::uint32_t>  m_Triangles; ///< triangle of each primitive slot
+  std::vector<AxisAlignedBox> m_Boxes;     ///< box of each primitive slot
 };
 
 } // namespace MeshExtraction

@@ -159,8 +159,8 @@ MeasureTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & c)
   m.edgeLength[2] = Norm(ab);
   const double twiceArea = Norm(Cross(ab, -ca));
   m.area = 0.5 * twiceArea;
-  const double sumSq = m.edgeLength[0] * m.edgeLength[0] + m.edgeLength[1] * m.edgeLength[1] +
-                       m.edgeLength[2] * m.edgeLength[2];
+  const double sumSq =
+    m.edgeLength[0] * m.edgeLength[0] + m.edgeLength[1] * m.edgeLength[1] + m.edgeLength[2] * m.edgeLength[2];
   const double minEdge = std::min({ m.edgeLength[0], m.edgeLength[1], m.edgeLength[2] });
   const double maxEdge = std::max({ m.edgeLength[0], m.edgeLength[1], m.edgeLength[2] });
   if (!(minEdge > 0.0))
@@ -307,8 +307,8 @@ IntersectRayTriangle(const Vec3 & origin,
   {
     return r; // degenerate triangle: it has no interior to cross
   }
-  const Vec3   tv = origin - a;
-  const Vec3   qv = Cross(tv, e1);
+  const Vec3 tv = origin - a;
+  const Vec3 qv = Cross(tv, e1);
   if (std::abs(det) <= tolerance * scale)
   {
     // Parallel to the plane: ambiguous only if the ray lies in the plane.
@@ -450,6 +450,26 @@ IsInsideCircumcircle(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 
   const Vec3   dd = d - n * Dot(d - center, n);
   const double r2 = SquaredNorm(a - center);
   return SquaredNorm(dd - center) < r2 * (1.0 - 1e-12);
+}
+
+// --- scale-space edge detection ---
+
+/** x rounded, component by component, to the coordinate type T of a mesh (float for
+ * itk::QuadEdgeMesh<double, 3>), so that a check made on the result sees exactly what
+ * the mesh will hold. The rounded value goes through a volatile temporary: GCC 12.2
+ * at -O2 drops a (double)(float) round trip in loops it vectorizes (SLP), returning
+ * the unrounded value for two of the three components. */
+template <typename T>
+inline Vec3
+RoundToCoordinateType(const Vec3 & x)
+{
+  Vec3 r;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    volatile T rounded = static_cast<T>(x[d]);
+    r[d] = static_cast<double>(rounded);
+  }
+  return r;
 }
 
 } // namespace MeshExtraction

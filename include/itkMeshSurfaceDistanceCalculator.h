@@ -134,16 +134,16 @@ protected:
   PrintSelf(std::ostream & os, Indent indent) const override;
 
 private:
-  typename MeshType::ConstPointer               m_Mesh;
-  typename ReferenceMeshType::ConstPointer      m_ReferenceMesh;
-  ImplicitSurfaceFunction::ConstPointer         m_ReferenceSurface;
-  unsigned int                                  m_SamplingLevel{ 2 };
-  bool                                          m_Symmetric{ true };
-  double                                        m_ImplicitSampleSpacing{ 0.0 };
-  unsigned int                                  m_NumberOfWorkUnits{ 0 };
-  ReportType                                    m_Report;
-  std::vector<double>                           m_VertexDistances;
-  std::vector<double>                           m_FaceCentroidDistances;
+  typename MeshType::ConstPointer          m_Mesh;
+  typename ReferenceMeshType::ConstPointer m_ReferenceMesh;
+  ImplicitSurfaceFunction::ConstPointer    m_ReferenceSurface;
+  unsigned int                             m_SamplingLevel{ 2 };
+  bool                                     m_Symmetric{ true };
+  double                                   m_ImplicitSampleSpacing{ 0.0 };
+  unsigned int                             m_NumberOfWorkUnits{ 0 };
+  ReportType                               m_Report;
+  std::vector<double>                      m_VertexDistances;
+  std::vector<double>                      m_FaceCentroidDistances;
 };
 } // namespace itk
 

@@ -91,7 +91,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
   MeshExtraction::SurfaceNetsClassificationStatistics greyscale;
   if (labels != nullptr || m_ClassifyByLabel)
   {
-    const double label = m_LabelValue;
+    const double                                        label = m_LabelValue;
     MeshExtraction::SurfaceNetsClassificationStatistics stats;
     if (labels != nullptr)
     {
@@ -100,16 +100,16 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
           labels->GetOrigin().EuclideanDistanceTo(input->GetOrigin()) > 1e-6 ||
           !labels->GetDirection().GetVnlMatrix().is_equal(input->GetDirection().GetVnlMatrix(), 1e-6))
       {
-        itkExceptionMacro("LabelImage must have the input's grid: size " << input->GetBufferedRegion().GetSize()
-                                                                         << ", spacing " << input->GetSpacing()
-                                                                         << ", origin " << input->GetOrigin()
-                                                                         << "; it has size "
-                                                                         << labels->GetBufferedRegion().GetSize()
-                                                                         << ", spacing " << labels->GetSpacing()
-                                                                         << ", origin " << labels->GetOrigin() << '.');
+        itkExceptionMacro("LabelImage must have the input's grid: size "
+                          << input->GetBufferedRegion().GetSize() << ", spacing " << input->GetSpacing() << ", origin "
+                          << input->GetOrigin() << "; it has size " << labels->GetBufferedRegion().GetSize()
+                          << ", spacing " << labels->GetSpacing() << ", origin " << labels->GetOrigin() << '.');
       }
       stats = MeshExtraction::ClassifySurfaceCells(
-        labels, [label](typename LabelImageType::PixelType v) { return static_cast<double>(v) == label; }, m_Net, workUnits);
+        labels,
+        [label](typename LabelImageType::PixelType v) { return static_cast<double>(v) == label; },
+        m_Net,
+        workUnits);
       // The greyscale range and NaN check, for the relaxation.
       MeshExtraction::SurfaceNet scratch;
       greyscale = MeshExtraction::ClassifySurfaceCells(
@@ -147,7 +147,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
     if (!greyscale.foundNaN && greyscale.minimum == greyscale.maximum)
     {
       itkExceptionMacro("The input image is constant (every voxel is " << greyscale.minimum
-                                                                        << "): there is no iso-surface.");
+                                                                       << "): there is no iso-surface.");
     }
     if (!greyscale.foundNaN && greyscale.insideVoxels == 0)
     {
@@ -459,7 +459,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   m_NumberOfSplitCells = m_Net.numberOfSplitCells;
   this->UpdateProgress(0.3f);
   const std::vector<MeshExtraction::Vec3> initial = m_Net.positions;
-  const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations); // 3
+  const auto                              relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations); // 3
   m_NumberOfIterations = relaxed.iterations;
   m_LastMaximumRelocation = relaxed.lastMaximumRelocation;
   Matrix<double, 3, 3> M;
@@ -468,9 +468,13 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   m_NumberOfNodesMovedBack = 0;
   if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
   {
-    m_NumberOfNodesMovedBack =
-      MeshExtraction::RemoveSurfaceNetSelfIntersections(
-        m_Net, initial, first, M, this->GetQuadSplit(), std::is_same<typename OutputMeshType::PointType::ValueType, float>::value); // 3b
+    m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(
+      m_Net,
+      initial,
+      first,
+      M,
+      this->GetQuadSplit(),
+      std::is_same<typename OutputMeshType::PointType::ValueType, float>::value); // 3b
   }
   this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
 

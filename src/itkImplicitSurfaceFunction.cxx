@@ -806,9 +806,8 @@ EllipsoidImplicitSurface::EvaluateWithClosestPoint(const InputType & point, Inpu
 
   // Sort the axes by decreasing semi-axis and fold the point into the first octant.
   std::array<unsigned int, 3> order{ { 0, 1, 2 } };
-  std::stable_sort(order.begin(), order.end(), [this](unsigned int a, unsigned int b) {
-    return m_SemiAxes[a] > m_SemiAxes[b];
-  });
+  std::stable_sort(
+    order.begin(), order.end(), [this](unsigned int a, unsigned int b) { return m_SemiAxes[a] > m_SemiAxes[b]; });
   double e[3];
   double y[3];
   double x[3];
@@ -837,8 +836,8 @@ EllipsoidImplicitSurface::GetBounds(InputType & lower, InputType & upper) const
   for (unsigned int i = 0; i < 3; ++i)
   {
     // Support function of the ellipsoid along axis i.
-    const double halfExtent = std::hypot(
-      m_Rotation(i, 0) * m_SemiAxes[0], m_Rotation(i, 1) * m_SemiAxes[1], m_Rotation(i, 2) * m_SemiAxes[2]);
+    const double halfExtent =
+      std::hypot(m_Rotation(i, 0) * m_SemiAxes[0], m_Rotation(i, 1) * m_SemiAxes[1], m_Rotation(i, 2) * m_SemiAxes[2]);
     lower[i] = m_Center[i] - halfExtent;
     upper[i] = m_Center[i] + halfExtent;
   }
@@ -910,8 +909,8 @@ TorusImplicitSurface::CheckParameterConsistency() const
 {
   if (!(m_MinorRadius < m_MajorRadius))
   {
-    return "MinorRadius must be smaller than MajorRadius (a ring torus), got MinorRadius = " +
-           ToString(m_MinorRadius) + " and MajorRadius = " + ToString(m_MajorRadius);
+    return "MinorRadius must be smaller than MajorRadius (a ring torus), got MinorRadius = " + ToString(m_MinorRadius) +
+           " and MajorRadius = " + ToString(m_MajorRadius);
   }
   return {};
 }
@@ -960,8 +959,7 @@ TorusImplicitSurface::GetBounds(InputType & lower, InputType & upper) const
   for (unsigned int i = 0; i < 3; ++i)
   {
     // Extent of the core circle along axis i, plus the tube.
-    const double halfExtent =
-      m_MajorRadius * std::sqrt(std::max(0.0, 1.0 - m_Axis[i] * m_Axis[i])) + m_MinorRadius;
+    const double halfExtent = m_MajorRadius * std::sqrt(std::max(0.0, 1.0 - m_Axis[i] * m_Axis[i])) + m_MinorRadius;
     lower[i] = m_Center[i] - halfExtent;
     upper[i] = m_Center[i] + halfExtent;
   }
@@ -1169,8 +1167,8 @@ SphereUnionImplicitSurface::OutputType
 SphereUnionImplicitSurface::EvaluateWithClosestPoint(const InputType & point, InputType & closest) const
 {
   this->ThrowIfParametersInvalid();
-  const Vec3   p = ToVec(point);
-  const size_t n = m_Centers.size();
+  const Vec3        p = ToVec(point);
+  const size_t      n = m_Centers.size();
   std::vector<Vec3> c(n);
   for (size_t i = 0; i < n; ++i)
   {

@@ -172,9 +172,10 @@ SampleImplicitSurface(const ImplicitSurfaceFunction & surface, double spacing, c
   {
     count[d] = static_cast<std::size_t>(std::ceil((upper[d] - lower[d]) / spacing)) + 3;
   }
-  const std::size_t blocks[3] = { (count[0] + Block - 1) / Block, (count[1] + Block - 1) / Block,
-                                  (count[2] + Block - 1) / Block };
-  const std::size_t numberOfBlocks = blocks[0] * blocks[1] * blocks[2];
+  const std::size_t              blocks[3] = { (count[0] + Block - 1) / Block,
+                                               (count[1] + Block - 1) / Block,
+                                               (count[2] + Block - 1) / Block };
+  const std::size_t              numberOfBlocks = blocks[0] * blocks[1] * blocks[2];
   std::vector<std::vector<Vec3>> found(numberOfBlocks);
   ParallelForBlocks(numberOfBlocks, 16, [&](std::size_t begin, std::size_t end, std::size_t) {
     ImplicitSurfaceFunction::InputType p;
@@ -332,7 +333,7 @@ ComputeSurfaceDistances(const IndexedTriangleMesh &     mesh,
       ImplicitSurfaceFunction::InputType lower;
       ImplicitSurfaceFunction::InputType upper;
       referenceSurface->GetBounds(lower, upper);
-      const bool unbounded = !(std::isfinite(lower[0]) && std::isfinite(lower[1]) && std::isfinite(lower[2]) &&
+      const bool     unbounded = !(std::isfinite(lower[0]) && std::isfinite(lower[1]) && std::isfinite(lower[2]) &&
                                std::isfinite(upper[0]) && std::isfinite(upper[1]) && std::isfinite(upper[2]));
       AxisAlignedBox meshBox;
       for (const auto & p : mesh.points)

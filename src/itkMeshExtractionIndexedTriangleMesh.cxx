@@ -30,7 +30,7 @@ class UnionFind
 {
 public:
   explicit UnionFind(std::size_t n)
-    : m_Parent(n)
+      : m_Parent(n)
   {
     std::iota(m_Parent.begin(), m_Parent.end(), 0u);
   }
@@ -76,10 +76,10 @@ private:
 constexpr std::uint32_t NoEdge = std::numeric_limits<std::uint32_t>::max();
 
 void
-BuildRows(std::size_t                                           n,
+BuildRows(std::size_t                                                  n,
           const std::vector<std::pair<std::uint32_t, std::uint32_t>> & pairs,
-          std::vector<std::uint32_t> &                          offsets,
-          std::vector<std::uint32_t> &                          values)
+          std::vector<std::uint32_t> &                                 offsets,
+          std::vector<std::uint32_t> &                                 values)
 {
   offsets.assign(n + 1, 0);
   for (const auto & p : pairs)
@@ -116,9 +116,9 @@ SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIn
 MeshTopology
 BuildMeshTopology(const IndexedTriangleMesh & mesh)
 {
-  MeshTopology       topo;
-  const std::size_t  numberOfTriangles = mesh.triangles.size();
-  const std::size_t  numberOfPoints = mesh.points.size();
+  MeshTopology      topo;
+  const std::size_t numberOfTriangles = mesh.triangles.size();
+  const std::size_t numberOfPoints = mesh.points.size();
 
   // 1. Sort the half-edges by their undirected key: groups are the edges.
   struct HalfEdge
@@ -151,7 +151,7 @@ BuildMeshTopology(const IndexedTriangleMesh & mesh)
   topo.incidences.reserve(halfEdges.size());
   for (std::size_t i = 0; i < halfEdges.size();)
   {
-    std::size_t j = i;
+    std::size_t        j = i;
     MeshTopology::Edge edge{};
     edge.a = static_cast<std::uint32_t>(halfEdges[i].key >> 32);
     edge.b = static_cast<std::uint32_t>(halfEdges[i].key & 0xffffffffu);

@@ -109,8 +109,7 @@ CheckGrid(const PhantomGrid & grid)
     }
     if (!(std::isfinite(grid.spacing[k]) && grid.spacing[k] > 0.0))
     {
-      itkGenericExceptionMacro(<< "PhantomGrid spacing must be finite and > 0 along every axis, got "
-                               << grid.spacing);
+      itkGenericExceptionMacro(<< "PhantomGrid spacing must be finite and > 0 along every axis, got " << grid.spacing);
     }
     if (!std::isfinite(grid.origin[k]))
     {
@@ -384,8 +383,8 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
       return cleft.GetPointer();
     }
   }
-  itkGenericExceptionMacro(<< "Unknown PhantomShape " << static_cast<int>(shape) << "; valid names are: "
-                           << PhantomShapeNameList());
+  itkGenericExceptionMacro(<< "Unknown PhantomShape " << static_cast<int>(shape)
+                           << "; valid names are: " << PhantomShapeNameList());
 }
 
 PhantomImageParameters

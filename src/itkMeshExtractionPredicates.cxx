@@ -389,9 +389,9 @@ SegmentIntersectsTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & p, const 
   }
   // The line through a and b crosses the plane at a point of the segment; it
   // meets the closed triangle iff the three signed volumes do not disagree.
-  const int s1 = Orient3D(a, b, p, q);
-  const int s2 = Orient3D(a, b, q, r);
-  const int s3 = Orient3D(a, b, r, p);
+  const int  s1 = Orient3D(a, b, p, q);
+  const int  s2 = Orient3D(a, b, q, r);
+  const int  s3 = Orient3D(a, b, r, p);
   const bool anyPositive = s1 > 0 || s2 > 0 || s3 > 0;
   const bool anyNegative = s1 < 0 || s2 < 0 || s3 < 0;
   return !(anyPositive && anyNegative);

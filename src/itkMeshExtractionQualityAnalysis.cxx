@@ -67,10 +67,10 @@ PrintStatistics(std::ostream & os, const char * name, const ValueStatistics & s)
 void
 PrintStatisticsJSON(std::ostream & os, const ValueStatistics & s)
 {
-  os << "{\"count\": " << s.count << ", \"mean\": " << s.mean << ", \"min\": " << s.minimum << ", \"max\": " << s.maximum
-     << ", \"p01\": " << s.percentile01 << ", \"p05\": " << s.percentile05 << ", \"median\": " << s.median
-     << ", \"p95\": " << s.percentile95 << ", \"histogram_range\": [" << s.histogramLower << ", " << s.histogramUpper
-     << "], \"histogram\": [";
+  os << "{\"count\": " << s.count << ", \"mean\": " << s.mean << ", \"min\": " << s.minimum
+     << ", \"max\": " << s.maximum << ", \"p01\": " << s.percentile01 << ", \"p05\": " << s.percentile05
+     << ", \"median\": " << s.median << ", \"p95\": " << s.percentile95 << ", \"histogram_range\": ["
+     << s.histogramLower << ", " << s.histogramUpper << "], \"histogram\": [";
   for (std::size_t i = 0; i < s.histogram.size(); ++i)
   {
     os << (i ? ", " : "") << s.histogram[i];
@@ -226,9 +226,9 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   ParallelForBlocks(probes.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      const std::uint32_t f = probes[i];
-      const auto &        t = mesh.triangles[f];
-      const Vec3          P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+      const std::uint32_t  f = probes[i];
+      const auto &         t = mesh.triangles[f];
+      const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
       const IdentifierType pid[3] = { t[0], t[1], t[2] };
       tree.VisitOverlapping(TriangleBox(mesh, f), [&](std::uint32_t g) {
         // Each pair once: by index among all, or (with queries) skip pairs of two
@@ -341,7 +341,7 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
   }
 
   // Per-triangle measures.
-  std::vector<TriangleMeasures> localMeasures;
+  std::vector<TriangleMeasures>   localMeasures;
   std::vector<TriangleMeasures> & m = measuresOut ? *measuresOut : localMeasures;
   m.resize(numberOfTriangles);
   ParallelForBlocks(numberOfTriangles, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -561,9 +561,9 @@ TriangleMeshQualityReport::Print(std::ostream & os, const std::string & title) c
   PrintStatistics(os, "min angle (deg)", minimumAngle);
   PrintStatistics(os, "max angle (deg)", maximumAngle);
   PrintStatistics(os, "edge length", edgeLength);
-  os << std::setprecision(4) << "  q_angle < 0.3: " << 100.0 * fractionQAngleBelow03 << " %   smoothness |2pi-sum|: "
-     << std::setprecision(6) << meanSmoothness << "   valence 6: " << std::setprecision(2) << 100.0 * fractionValence6
-     << " %\n";
+  os << std::setprecision(4) << "  q_angle < 0.3: " << 100.0 * fractionQAngleBelow03
+     << " %   smoothness |2pi-sum|: " << std::setprecision(6) << meanSmoothness
+     << "   valence 6: " << std::setprecision(2) << 100.0 * fractionValence6 << " %\n";
   os << "  valence histogram:";
   for (std::size_t d = 0; d < valenceHistogram.size(); ++d)
   {

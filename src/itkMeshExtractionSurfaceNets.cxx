@@ -41,8 +41,8 @@ CornerIndex(const unsigned int offset[3])
 } // namespace
 
 SurfaceNetsCellTable::SurfaceNetsCellTable()
-  : m_NumberOfSheets(256 * 64, 0)
-  , m_SheetOfEdge(256 * 64)
+    : m_NumberOfSheets(256 * 64, 0)
+    , m_SheetOfEdge(256 * 64)
 {
   for (unsigned int e = 0; e < 12; ++e)
   {
@@ -191,7 +191,8 @@ SurfaceNet::FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const
   const std::int64_t row = (z + 1) * (size[1] + 1) + (y + 1);
   const auto         begin = cells.begin() + rowStart[row];
   const auto         end = cells.begin() + rowStart[row + 1];
-  const auto found = std::lower_bound(begin, end, x, [](const SurfaceCell & c, std::int64_t value) { return c.x < value; });
+  const auto         found =
+    std::lower_bound(begin, end, x, [](const SurfaceCell & c, std::int64_t value) { return c.x < value; });
   if (found == end || found->x != x)
   {
     return -1;
@@ -317,10 +318,10 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
 
   // Quads: each crossing voxel edge is found once, from the cell that has it as
   // its edge at offset (1, 1) on the two other axes (thesis 3.2.5).
-  constexpr std::size_t           BlockSize = 4096;
-  const std::size_t               numberOfBlocks = (numberOfCells + BlockSize - 1) / BlockSize;
-  std::vector<std::size_t>        quadsPerBlock(numberOfBlocks + 1, 0);
-  auto                            crosses = [&table](std::uint8_t configuration, unsigned int e) {
+  constexpr std::size_t    BlockSize = 4096;
+  const std::size_t        numberOfBlocks = (numberOfCells + BlockSize - 1) / BlockSize;
+  std::vector<std::size_t> quadsPerBlock(numberOfBlocks + 1, 0);
+  auto                     crosses = [&table](std::uint8_t configuration, unsigned int e) {
     return table.SheetOfEdge(configuration, 0, e) >= 0;
   };
   ParallelForBlocks(
@@ -382,7 +383,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
           const std::uint32_t nb = cb.firstNode + table.SheetOfEdge(cb.configuration, cb.faceRules, 4 * a + 2);
           const std::uint32_t nc = cc.firstNode + table.SheetOfEdge(cc.configuration, cc.faceRules, 4 * a + 1);
           const std::uint32_t nbc = cbc.firstNode + table.SheetOfEdge(cbc.configuration, cbc.faceRules, 4 * a + 0);
-          const bool lowInside = ((c.configuration >> table.edgeCorners[e][0]) & 1u) != 0;
+          const bool          lowInside = ((c.configuration >> table.edgeCorners[e][0]) & 1u) != 0;
           if (lowInside)
           {
             net.quads[q] = { nbc, nc, n, nb }; // outward along +a
@@ -573,8 +574,13 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
   for (unsigned int round = 0;; ++round)
   {
     // Test the faces as they will be written.
-    MakeSurfaceNetFaces(net, origin, indexToPhysical, split == QuadSplit::KeepQuads ? QuadSplit::ShortestDiagonal : split,
-                        points, polygons, polygonSize);
+    MakeSurfaceNetFaces(net,
+                        origin,
+                        indexToPhysical,
+                        split == QuadSplit::KeepQuads ? QuadSplit::ShortestDiagonal : split,
+                        points,
+                        polygons,
+                        polygonSize);
     mesh.points = ToPhysical(net.positions, origin, indexToPhysical, roundToFloat);
     mesh.triangles.resize(polygons.size());
     for (std::size_t f = 0; f < polygons.size(); ++f)

@@ -57,8 +57,9 @@ SurfaceNetTriangles::BuildConnectivity(std::size_t numberOfPoints)
       keys[3 * f + k] = { (static_cast<std::uint64_t>(std::min(u, v)) << 32) | std::max(u, v), 3 * f + k };
     }
   }
-  std::sort(keys.begin(), keys.end(),
-            [](const Key & x, const Key & y) { return x.edge != y.edge ? x.edge < y.edge : x.halfEdge < y.halfEdge; });
+  std::sort(keys.begin(), keys.end(), [](const Key & x, const Key & y) {
+    return x.edge != y.edge ? x.edge < y.edge : x.halfEdge < y.halfEdge;
+  });
   twin.assign(3 * n, None);
   for (std::size_t i = 0; i < keys.size();)
   {
@@ -174,8 +175,7 @@ SwapEdges(const std::vector<Vec3> &          physical,
     {
       continue;
     }
-    if (refused != nullptr &&
-        std::binary_search(refused->begin(), refused->end(), EdgeKey(a, b)))
+    if (refused != nullptr && std::binary_search(refused->begin(), refused->end(), EdgeKey(a, b)))
     {
       continue;
     }
@@ -212,10 +212,10 @@ SwapEdges(const std::vector<Vec3> &          physical,
 }
 
 std::size_t
-UndoIntersectingSwaps(const std::vector<Vec3> &    physical,
-                      SurfaceNetTriangles &        mesh,
+UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
+                      SurfaceNetTriangles &         mesh,
                       std::vector<EdgeSwapRecord> & swaps,
-                      std::vector<std::uint64_t> * refused)
+                      std::vector<std::uint64_t> *  refused)
 {
   std::size_t         undone = 0;
   IndexedTriangleMesh check;

@@ -325,9 +325,9 @@ TEST(ImplicitSurfaceFunction, IsOneLipschitzOnRandomPointPairs)
 {
   for (const auto & entry : AllSurfaces())
   {
-    const auto a = RandomPointsAround(*entry.second, 500, 21);
-    const auto b = RandomPointsAround(*entry.second, 500, 22);
-    std::mt19937_64 generator(23);
+    const auto                       a = RandomPointsAround(*entry.second, 500, 21);
+    const auto                       b = RandomPointsAround(*entry.second, 500, 22);
+    std::mt19937_64                  generator(23);
     std::normal_distribution<double> normal(0.0, 0.05);
     for (size_t i = 0; i < a.size(); ++i)
     {
@@ -378,7 +378,7 @@ TEST(ImplicitSurfaceFunction, PrintSelfNamesTheClassAndParameters)
 
 TEST(ImplicitSurfaceFunction, SettingAParameterUpdatesTheModifiedTime)
 {
-  auto                     sphere = itk::SphereImplicitSurface::New();
+  auto                        sphere = itk::SphereImplicitSurface::New();
   const itk::ModifiedTimeType before = sphere->GetMTime();
   sphere->SetRadius(3.0);
   EXPECT_GT(sphere->GetMTime(), before);
@@ -647,7 +647,12 @@ TEST(TorusImplicitSurface, MinorRadiusNotBelowMajorRadiusIsRejectedWhenUsed)
   torus->SetMajorRadius(10);
   EXPECT_TRUE(torus->AreParametersValid());
   EXPECT_NEAR(torus->Evaluate(P(0, 0, 0)), 5.0, 1e-15);
-  ExpectThrowsMentioning([&] { torus->SetRadii(2, 2); torus->Evaluate(P(0, 0, 0)); }, "MinorRadius");
+  ExpectThrowsMentioning(
+    [&] {
+      torus->SetRadii(2, 2);
+      torus->Evaluate(P(0, 0, 0));
+    },
+    "MinorRadius");
 }
 
 // ---------------------------------------------------------------------------------
@@ -658,10 +663,10 @@ TEST(BoxImplicitSurface, DistanceToFacesEdgesAndCornersMatchesClosedForms)
 {
   auto box = itk::BoxImplicitSurface::New();
   box->SetHalfSizes(V(3, 2, 1));
-  EXPECT_NEAR(box->Evaluate(P(0, 0, 0)), -1.0, 1e-15);      // centre: nearest face z
-  EXPECT_NEAR(box->Evaluate(P(2.5, 0, 0)), -0.5, 1e-15);    // nearest face x
-  EXPECT_NEAR(box->Evaluate(P(5, 0, 0)), 2.0, 1e-15);       // outside a face
-  EXPECT_NEAR(box->Evaluate(P(4, 3, 0)), std::sqrt(2.0), 1e-15); // outside an edge
+  EXPECT_NEAR(box->Evaluate(P(0, 0, 0)), -1.0, 1e-15);                        // centre: nearest face z
+  EXPECT_NEAR(box->Evaluate(P(2.5, 0, 0)), -0.5, 1e-15);                      // nearest face x
+  EXPECT_NEAR(box->Evaluate(P(5, 0, 0)), 2.0, 1e-15);                         // outside a face
+  EXPECT_NEAR(box->Evaluate(P(4, 3, 0)), std::sqrt(2.0), 1e-15);              // outside an edge
   EXPECT_NEAR(box->Evaluate(P(4, -3, 3)), std::sqrt(1.0 + 1.0 + 4.0), 1e-15); // corner
   ExpectConsistentAt(*box, P(0, 0, 0), "box centre");
   ExpectConsistentAt(*box, P(2.5, 1.5, 0.5), "box inside near a corner");
@@ -871,18 +876,18 @@ TEST(SphereDifferenceImplicitSurface, EmptyDifferenceOrBadRadiusThrows)
 
 TEST(NarrowCleftImplicitSurface, DistanceMatchesClosedFormsInAndAroundTheSlot)
 {
-  auto cleft = itk::NarrowCleftImplicitSurface::New(); // block 20^3, slot 1.5 wide, 10 deep (floor z = 0)
-  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 5)), 0.75, 1e-12);          // middle of the slot
-  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 0.5)), 0.5, 1e-12);         // slot, near the floor
-  EXPECT_NEAR(cleft->Evaluate(P(0, 0, -1)), -1.0, 1e-12);         // under the floor
-  EXPECT_NEAR(cleft->Evaluate(P(2, 0, 5)), -1.25, 1e-12);         // in a prong
-  EXPECT_NEAR(cleft->Evaluate(P(0.9, 0, 0.1)), -0.15, 1e-12);     // inner corner of the slot
-  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 11)), 1.25, 1e-12);         // above the slot: the rim
-  EXPECT_NEAR(cleft->Evaluate(P(0, 11, 5)), 1.25, 1e-12);         // beyond the open end of the slot
-  EXPECT_NEAR(cleft->Evaluate(P(12, 0, 0)), 2.0, 1e-12);          // outside a side face
-  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 0)), 0.0, 1e-12);           // on the floor
-  EXPECT_NEAR(cleft->Evaluate(P(5, 0, 0)), -4.25, 1e-12);         // in a prong, level with the floor
-  EXPECT_NEAR(cleft->Evaluate(P(5, 0, -5)), -5.0, 1e-12);         // deep inside, under the floor
+  auto cleft = itk::NarrowCleftImplicitSurface::New();        // block 20^3, slot 1.5 wide, 10 deep (floor z = 0)
+  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 5)), 0.75, 1e-12);      // middle of the slot
+  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 0.5)), 0.5, 1e-12);     // slot, near the floor
+  EXPECT_NEAR(cleft->Evaluate(P(0, 0, -1)), -1.0, 1e-12);     // under the floor
+  EXPECT_NEAR(cleft->Evaluate(P(2, 0, 5)), -1.25, 1e-12);     // in a prong
+  EXPECT_NEAR(cleft->Evaluate(P(0.9, 0, 0.1)), -0.15, 1e-12); // inner corner of the slot
+  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 11)), 1.25, 1e-12);     // above the slot: the rim
+  EXPECT_NEAR(cleft->Evaluate(P(0, 11, 5)), 1.25, 1e-12);     // beyond the open end of the slot
+  EXPECT_NEAR(cleft->Evaluate(P(12, 0, 0)), 2.0, 1e-12);      // outside a side face
+  EXPECT_NEAR(cleft->Evaluate(P(0, 0, 0)), 0.0, 1e-12);       // on the floor
+  EXPECT_NEAR(cleft->Evaluate(P(5, 0, 0)), -4.25, 1e-12);     // in a prong, level with the floor
+  EXPECT_NEAR(cleft->Evaluate(P(5, 0, -5)), -5.0, 1e-12);     // deep inside, under the floor
   EXPECT_NEAR(cleft->Evaluate(P(11, 11, 11)), std::sqrt(3.0), 1e-12); // outside a corner
   for (const PointType & p : { P(0, 0, 5), P(0.9, 0, 0.1), P(0, 0, 11), P(0, 11, 5), P(0.75, 0, 10) })
   {
@@ -1014,10 +1019,10 @@ TEST(NarrowCleftImplicitSurface, SlotWiderOrDeeperThanTheBlockIsRejected)
 TEST(MeshExtractionPhantoms, NamesRoundTripAndUnknownNamesListTheValidOnes)
 {
   using namespace itk::MeshExtraction;
-  const std::vector<std::string> expected = { "plane",   "sphere",         "two-spheres",
-                                              "chapter4-sphere", "ellipsoid", "indented-sphere",
-                                              "torus",   "thin-plate",     "narrow-cleft" };
-  const auto shapes = AllPhantomShapes();
+  const std::vector<std::string> expected = { "plane",           "sphere",     "two-spheres",
+                                              "chapter4-sphere", "ellipsoid",  "indented-sphere",
+                                              "torus",           "thin-plate", "narrow-cleft" };
+  const auto                     shapes = AllPhantomShapes();
   ASSERT_EQ(shapes.size(), expected.size());
   for (size_t i = 0; i < shapes.size(); ++i)
   {
@@ -1101,7 +1106,7 @@ TEST(MeshExtractionPhantoms, ShapesAreCentredInsideTheGridAndSizedByItsSmallestE
       }
       for (const PointType & p : RandomPoints(lower, upper, 0.0, 500, 101))
       {
-        const PointType q = surface->ClosestSurfacePoint(p);
+        const PointType  q = surface->ClosestSurfacePoint(p);
         const VectorType local = MatrixType(grid.direction.GetTranspose()) * (q - grid.origin);
         for (unsigned int k = 0; k < 3; ++k)
         {
@@ -1131,8 +1136,8 @@ TEST(MeshExtractionPhantoms, DefaultShapesHaveTheDocumentedSizes)
   const auto union2 = dynamic_cast<const itk::SphereUnionImplicitSurface *>(two.GetPointer());
   ASSERT_NE(union2, nullptr);
   ASSERT_EQ(union2->GetNumberOfSpheres(), 2u);
-  EXPECT_NEAR(union2->GetSphereCenter(0).EuclideanDistanceTo(union2->GetSphereCenter(1)), union2->GetSphereRadius(0),
-              1e-12);
+  EXPECT_NEAR(
+    union2->GetSphereCenter(0).EuclideanDistanceTo(union2->GetSphereCenter(1)), union2->GetSphereRadius(0), 1e-12);
 
   // The default plane is tilted to every grid axis.
   const auto plane = MakePhantomSurface(PhantomShape::Plane, DefaultPhantomGrid(PhantomShape::Plane));

@@ -100,10 +100,10 @@ MakeSource(const itk::ImplicitSurfaceFunction * surface, unsigned int size = 24)
  * exactly or within `tolerance`. */
 template <typename TImage, typename TExpected>
 void
-ExpectVoxels(const TImage *                      image,
+ExpectVoxels(const TImage *                       image,
              const itk::ImplicitSurfaceFunction & surface,
-             TExpected                           expected,
-             double                              tolerance = 0.0)
+             TExpected                            expected,
+             double                               tolerance = 0.0)
 {
   itk::ImageRegionConstIteratorWithIndex<TImage> it(image, image->GetLargestPossibleRegion());
   unsigned int                                   failures = 0;
@@ -163,7 +163,7 @@ TEST(ImplicitSurfaceImageSource, AnisotropicSpacingRotatedDirectionAndOriginAreH
   torus->SetCenter(P(-3, 8, 15));
   torus->SetAxis(V(1, -2, 2));
   torus->SetRadii(6, 2);
-  auto               source = MakeSource<DoubleImage>(torus, 0);
+  auto                  source = MakeSource<DoubleImage>(torus, 0);
   DoubleImage::SizeType size = { { 30, 20, 12 } };
   source->SetSize(size);
   DoubleImage::SpacingType spacing;
@@ -180,8 +180,8 @@ TEST(ImplicitSurfaceImageSource, AnisotropicSpacingRotatedDirectionAndOriginAreH
   ExpectVoxels(image, *torus, [](double d) { return d; });
   // One voxel by hand: x = origin + D (spacing .* index).
   const DoubleImage::IndexType index = { { 17, 3, 9 } };
-  const VectorType scaled = V(17 * 0.6, 3 * 0.9, 9 * 2.0);
-  const PointType  x = P(-12, 0, 5) + TiltedDirection() * scaled;
+  const VectorType             scaled = V(17 * 0.6, 3 * 0.9, 9 * 2.0);
+  const PointType              x = P(-12, 0, 5) + TiltedDirection() * scaled;
   EXPECT_NEAR(image->GetPixel(index), torus->Evaluate(x), 1e-12);
 }
 
@@ -259,9 +259,11 @@ TEST(ImplicitSurfaceImageSource, IntegerPixelTypesAreRoundedAndClamped)
     source->SetInsideValue(100);
     source->SetOutsideValue(0);
     source->Update();
-    ExpectVoxels(source->GetOutput(), *sphere, [](double d) {
-      return static_cast<unsigned char>(std::round(100.0 * 0.5 * std::erfc(d / std::sqrt(2.0))));
-    }, 1.0); // rounding of values within an ulp of n + 1/2 may differ
+    ExpectVoxels(
+      source->GetOutput(),
+      *sphere,
+      [](double d) { return static_cast<unsigned char>(std::round(100.0 * 0.5 * std::erfc(d / std::sqrt(2.0)))); },
+      1.0); // rounding of values within an ulp of n + 1/2 may differ
   }
 }
 
@@ -408,7 +410,7 @@ TEST(MeshExtractionPhantoms, DefaultPhantomImagesHaveTheGridGeometryAndNoVoxelEx
   using namespace itk::MeshExtraction;
   for (const auto shape : AllPhantomShapes())
   {
-    const PhantomGrid grid = DefaultPhantomGrid(shape);
+    const PhantomGrid      grid = DefaultPhantomGrid(shape);
     PhantomImageParameters distance = DefaultPhantomImageParameters(shape);
     distance.mode = PhantomImage::DistanceMap;
     auto source = MakePhantomImageSource<DoubleImage>(shape, grid, distance);
@@ -416,7 +418,7 @@ TEST(MeshExtractionPhantoms, DefaultPhantomImagesHaveTheGridGeometryAndNoVoxelEx
     const DoubleImage * image = source->GetOutput();
     EXPECT_EQ(image->GetLargestPossibleRegion().GetSize(), grid.size) << shape;
     EXPECT_EQ(image->GetSpacing(), grid.spacing) << shape;
-    unsigned int onSurface = 0, inside = 0;
+    unsigned int                                        onSurface = 0, inside = 0;
     itk::ImageRegionConstIteratorWithIndex<DoubleImage> it(image, image->GetLargestPossibleRegion());
     for (; !it.IsAtEnd(); ++it)
     {
@@ -461,7 +463,7 @@ TEST(MeshExtractionPhantoms, PhantomImageDoesNotDependOnTheGridDirection)
     tilted->Update();
     itk::ImageRegionConstIteratorWithIndex<FloatImage> it(straight->GetOutput(),
                                                           straight->GetOutput()->GetLargestPossibleRegion());
-    double worst = 0.0;
+    double                                             worst = 0.0;
     for (; !it.IsAtEnd(); ++it)
     {
       worst = std::max(worst, std::abs(double(it.Get()) - tilted->GetOutput()->GetPixel(it.GetIndex())));

@@ -51,9 +51,9 @@ TEST(TriangleMeasures, EquilateralTriangleHasQualityOne)
 TEST(TriangleMeasures, RightIsoscelesTriangleHasQAngleOneHalf)
 {
   const TriangleMeasures m = Measure(0, 0, 1, 0, 0, 1);
-  EXPECT_NEAR(m.qAngle, 0.5, 1e-12);                       // 45 / 90 degrees
-  EXPECT_NEAR(m.qLength, 1.0 / std::sqrt(2.0), 1e-12);     // 1 / sqrt(2)
-  EXPECT_NEAR(m.qArea, 4.0 * Sqrt3 * 0.5 / 4.0, 1e-12);    // 4 sqrt3 A / (1 + 1 + 2)
+  EXPECT_NEAR(m.qAngle, 0.5, 1e-12);                    // 45 / 90 degrees
+  EXPECT_NEAR(m.qLength, 1.0 / std::sqrt(2.0), 1e-12);  // 1 / sqrt(2)
+  EXPECT_NEAR(m.qArea, 4.0 * Sqrt3 * 0.5 / 4.0, 1e-12); // 4 sqrt3 A / (1 + 1 + 2)
   EXPECT_NEAR(m.maxAngle, itk::Math::pi / 2, 1e-12);
 }
 
@@ -100,10 +100,10 @@ TEST(TriangleGeometry, ClosestPointOnTriangleMatchesBruteForce)
   std::uniform_real_distribution<double> u(-2.0, 2.0);
   for (int trial = 0; trial < 200; ++trial)
   {
-    const Vec3 a = MakeVec3(u(rng), u(rng), u(rng));
-    const Vec3 b = MakeVec3(u(rng), u(rng), u(rng));
-    const Vec3 c = MakeVec3(u(rng), u(rng), u(rng));
-    const Vec3 p = MakeVec3(u(rng), u(rng), u(rng)) * 2.0;
+    const Vec3   a = MakeVec3(u(rng), u(rng), u(rng));
+    const Vec3   b = MakeVec3(u(rng), u(rng), u(rng));
+    const Vec3   c = MakeVec3(u(rng), u(rng), u(rng));
+    const Vec3   p = MakeVec3(u(rng), u(rng), u(rng)) * 2.0;
     const double exact = SquaredDistancePointTriangle(p, a, b, c);
     double       best = std::numeric_limits<double>::max();
     const int    n = 300;
@@ -167,9 +167,9 @@ TEST(ExactPredicates, Orient3DSignIsExactOnNearlyCoplanarPoints)
       u[k] = big(rng) / 4;
       v[k] = big(rng) / 4;
     }
-    long long b[3];
-    long long c[3];
-    long long d[3];
+    long long       b[3];
+    long long       c[3];
+    long long       d[3];
     const long long s = small(rng);
     const long long t = small(rng);
     for (int k = 0; k < 3; ++k)

@@ -46,21 +46,20 @@ MakeIcosphere(unsigned int level, double radius = 1.0, const Vec3 & center = Mak
 {
   IndexedTriangleMesh m;
   const double        t = (1.0 + std::sqrt(5.0)) / 2.0;
-  const double        base[12][3] = { { -1, t, 0 }, { 1, t, 0 },   { -1, -t, 0 }, { 1, -t, 0 },
-                                      { 0, -1, t }, { 0, 1, t },   { 0, -1, -t }, { 0, 1, -t },
-                                      { t, 0, -1 }, { t, 0, 1 },   { -t, 0, -1 }, { -t, 0, 1 } };
+  const double base[12][3] = { { -1, t, 0 },  { 1, t, 0 },  { -1, -t, 0 }, { 1, -t, 0 }, { 0, -1, t },  { 0, 1, t },
+                               { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 },  { t, 0, 1 },  { -t, 0, -1 }, { -t, 0, 1 } };
   for (const auto & b : base)
   {
     Vec3 v = MakeVec3(b[0], b[1], b[2]);
     m.points.push_back(v * (1.0 / itk::MeshExtraction::Norm(v)));
   }
-  m.triangles = { { 0, 11, 5 }, { 0, 5, 1 },  { 0, 1, 7 },   { 0, 7, 10 }, { 0, 10, 11 }, { 1, 5, 9 },  { 5, 11, 4 },
-                  { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },   { 3, 9, 4 },  { 3, 4, 2 },   { 3, 2, 6 },  { 3, 6, 8 },
-                  { 3, 8, 9 },  { 4, 9, 5 },  { 2, 4, 11 },  { 6, 2, 10 }, { 8, 6, 7 },   { 9, 8, 1 } };
+  m.triangles = { { 0, 11, 5 },  { 0, 5, 1 },  { 0, 1, 7 },  { 0, 7, 10 }, { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 },
+                  { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },  { 3, 9, 4 },  { 3, 4, 2 },   { 3, 2, 6 }, { 3, 6, 8 },
+                  { 3, 8, 9 },   { 4, 9, 5 },  { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 },   { 9, 8, 1 } };
   for (unsigned int l = 0; l < level; ++l)
   {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
-    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+    auto                                                             midpoint = [&](std::uint32_t a, std::uint32_t b) {
       const auto key = std::make_pair(std::min(a, b), std::max(a, b));
       const auto found = midpoints.find(key);
       if (found != midpoints.end())
@@ -106,7 +105,8 @@ MakeTorus(unsigned int nu, unsigned int nv, double R, double r)
     for (unsigned int j = 0; j < nv; ++j)
     {
       const double v = 2.0 * itk::Math::pi * j / nv;
-      m.points.push_back(MakeVec3((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)));
+      m.points.push_back(
+        MakeVec3((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)));
     }
   }
   auto id = [nu, nv](unsigned int i, unsigned int j) { return static_cast<std::uint32_t>((i % nu) * nv + (j % nv)); };

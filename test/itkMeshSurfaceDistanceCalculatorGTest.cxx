@@ -135,9 +135,9 @@ TEST(MeshSurfaceDistanceCalculator, DistancesToAReferenceMeshAreExactAndSymmetri
 
 TEST(MeshSurfaceDistanceCalculator, MeshDistancesMatchBruteForceForAnyThreadCount)
 {
-  const IndexedTriangleMesh reference = MakeTorus(24, 12, 4.0, 1.5);
-  IndexedTriangleMesh       query = MakeIcosphere(2, 5.0);
-  std::mt19937              rng(5);
+  const IndexedTriangleMesh        reference = MakeTorus(24, 12, 4.0, 1.5);
+  IndexedTriangleMesh              query = MakeIcosphere(2, 5.0);
+  std::mt19937                     rng(5);
   std::normal_distribution<double> noise(0.0, 0.3);
   for (auto & p : query.points)
   {

@@ -40,8 +40,8 @@ template <typename TImage>
 typename TImage::Pointer
 MakeImage(unsigned int nx, unsigned int ny, unsigned int nz, typename TImage::PixelType value = 0)
 {
-  auto                       image = TImage::New();
-  typename TImage::SizeType  size = { { nx, ny, nz } };
+  auto                      image = TImage::New();
+  typename TImage::SizeType size = { { nx, ny, nz } };
   image->SetRegions(size);
   image->Allocate();
   image->FillBuffer(value);
@@ -81,12 +81,12 @@ Text(const ME::TriangleMeshQualityReport & r)
 std::size_t
 CountComponents(const MaskImage * mask)
 {
-  const auto         size = mask->GetBufferedRegion().GetSize();
-  const long         n[3] = { static_cast<long>(size[0]), static_cast<long>(size[1]), static_cast<long>(size[2]) };
-  std::vector<int>   seen(n[0] * n[1] * n[2], 0);
-  const auto *       buffer = mask->GetBufferPointer();
-  std::size_t        components = 0;
-  std::vector<long>  stack;
+  const auto        size = mask->GetBufferedRegion().GetSize();
+  const long        n[3] = { static_cast<long>(size[0]), static_cast<long>(size[1]), static_cast<long>(size[2]) };
+  std::vector<int>  seen(n[0] * n[1] * n[2], 0);
+  const auto *      buffer = mask->GetBufferPointer();
+  std::size_t       components = 0;
+  std::vector<long> stack;
   for (long start = 0; start < n[0] * n[1] * n[2]; ++start)
   {
     if (buffer[start] != 1 || seen[start])
@@ -229,9 +229,9 @@ TEST(SurfaceNetsImageToMeshFilter, EveryCellConfigurationGivesAValidClosedSurfac
         continue;
       }
       const auto r = Measure(Extract(grey.GetPointer(), 0.5, true, Enums::Relaxation::Combined).GetPointer());
-      ASSERT_TRUE(r.IsValidClosedSurface()) << "greyscale configuration " << configuration << " border " << border
-                                            << '\n'
-                                            << Text(r);
+      ASSERT_TRUE(r.IsValidClosedSurface())
+        << "greyscale configuration " << configuration << " border " << border << '\n'
+        << Text(r);
       ASSERT_EQ(r.eulerCharacteristic, expectedChi) << "greyscale configuration " << configuration;
     }
   }
@@ -352,7 +352,9 @@ TEST(SurfaceNetsImageToMeshFilter, SnertPlaneIsExactAndAsFlatAsMarchingCubes)
 
 TEST(SurfaceNetsImageToMeshFilter, OverlappingSpheresTorusAndEllipsoidKeepTheirTopology)
 {
-  for (auto shape : { ME::PhantomShape::TwoSpheres, ME::PhantomShape::Torus, ME::PhantomShape::Ellipsoid,
+  for (auto shape : { ME::PhantomShape::TwoSpheres,
+                      ME::PhantomShape::Torus,
+                      ME::PhantomShape::Ellipsoid,
                       ME::PhantomShape::IndentedSphere })
   {
     SCOPED_TRACE(ME::PhantomShapeName(shape));
@@ -410,8 +412,8 @@ TEST(SurfaceNetsImageToMeshFilter, AnisotropicRotatedGridGivesTheSamePhysicalSur
   const auto    q = Measure(mesh.GetPointer());
   EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
   const auto d = Distance(mesh.GetPointer(), anisotropic.surface);
-  EXPECT_LE(d.vertices.mean, 0.03);  // mm
-  EXPECT_LT(d.hausdorff, 0.5);       // mm
+  EXPECT_LE(d.vertices.mean, 0.03); // mm
+  EXPECT_LT(d.hausdorff, 0.5);      // mm
 
   // The same sphere (same physical radius) on the default isotropic grid.
   const Phantom isotropic = MakePhantom(ME::PhantomShape::Sphere);
@@ -422,7 +424,7 @@ TEST(SurfaceNetsImageToMeshFilter, AnisotropicRotatedGridGivesTheSamePhysicalSur
   ASSERT_NE(s2, nullptr);
   const double radius = s1->GetRadius();
   EXPECT_NEAR(q.enclosedVolume, 4.0 / 3.0 * itk::Math::pi * radius * radius * radius, 0.01 * q.enclosedVolume);
-  const auto qi = Measure(Extract(isotropic.image.GetPointer(), 0.0, false).GetPointer());
+  const auto   qi = Measure(Extract(isotropic.image.GetPointer(), 0.0, false).GetPointer());
   const double ri = s2->GetRadius();
   EXPECT_NEAR(qi.enclosedVolume / (ri * ri * ri), q.enclosedVolume / (radius * radius * radius), 0.01);
 }

@@ -346,8 +346,8 @@ TEST(TriangleMeshQualityCalculator, MissingMeshAndMissingPointsThrow)
 {
   auto calculator = itk::TriangleMeshQualityCalculator<MeshType>::New();
   EXPECT_THROW(calculator->Compute(), itk::ExceptionObject);
-  IndexedTriangleMesh m = MakeTetrahedron();
-  auto                mesh = ToITKMesh<MeshType>(m);
+  IndexedTriangleMesh                 m = MakeTetrahedron();
+  auto                                mesh = ToITKMesh<MeshType>(m);
   MeshType::CellType::CellAutoPointer cell;
   cell.TakeOwnership(new itk::TriangleCell<MeshType::CellType>);
   cell->SetPointId(0, 0);
