@@ -20,6 +20,7 @@
 //   meshextraction phantom NAME OUT.nrrd [options]   write a phantom image
 //   meshextraction extract IN OUT.vtk [options]      extract a surface mesh
 //   meshextraction improve IN OUT.vtk [options]      smooth and swap edges of a mesh
+//   meshextraction refine IMAGE MESH OUT [options]   scale-space edge refinement (ch. 4)
 //   meshextraction report DIR MESH... [options]      HTML report with plots and renderings
 //   meshextraction quality MESH... [options]         measure meshes
 //
@@ -29,6 +30,7 @@
 #include "MeshExtractionImproveCommand.h"
 #include "MeshExtractionPhantomCommand.h"
 #include "MeshExtractionQualityCommand.h"
+#include "MeshExtractionRefineCommand.h"
 #include "MeshExtractionReportCommand.h"
 
 using namespace MeshExtractionCLI;
@@ -39,9 +41,8 @@ namespace
 std::vector<Command>
 Commands()
 {
-  return {
-    MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(), MakeQualityCommand(), MakeReportCommand()
-  };
+  return { MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(),
+           MakeRefineCommand(),  MakeQualityCommand(), MakeReportCommand() };
 }
 void
 PrintUsage(std::ostream & os, const std::vector<Command> & commands)

@@ -93,18 +93,47 @@ public:
     /** The other diagonal of the quad is shorter. */
     ShortestEdge
   };
+
+  /** The line along which scale-space edge detection searches for the edge from a
+   * vertex (thesis section 4.2.1). */
+  enum class EdgeSearchDirection : std::uint8_t
+  {
+    /** The image gradient at the vertex, a Gaussian derivative at the largest scale
+     * (the thesis' choice); the vertex normal where the gradient vanishes. */
+    ImageGradient = 0,
+    /** The area-weighted vertex normal of the mesh. */
+    VertexNormal
+  };
+
+  /** The operations of the scale-space refinement protocol (thesis section 4.2.4,
+   * the rows of Table 4.1). */
+  enum class RefinementOperation : std::uint8_t
+  {
+    /** The initial mesh ("Org"). */
+    Initial = 0,
+    /** A scale-space edge-detection step ("ED"). */
+    EdgeDetection,
+    /** Regularity edge swapping ("ES"). */
+    EdgeSwap,
+    /** One centroid smoothing step ("S"). */
+    Smoothing
+  };
 };
 
 MeshExtraction_EXPORT std::ostream &
-operator<<(std::ostream & out, MeshExtractionEnums::PhantomImage value);
+                      operator<<(std::ostream & out, MeshExtractionEnums::PhantomImage value);
 MeshExtraction_EXPORT std::ostream &
-operator<<(std::ostream & out, MeshExtractionEnums::SmoothingWeights value);
+                      operator<<(std::ostream & out, MeshExtractionEnums::SmoothingWeights value);
 MeshExtraction_EXPORT std::ostream &
-operator<<(std::ostream & out, MeshExtractionEnums::SmoothingUpdate value);
+                      operator<<(std::ostream & out, MeshExtractionEnums::SmoothingUpdate value);
 MeshExtraction_EXPORT std::ostream &
-operator<<(std::ostream & out, MeshExtractionEnums::MovementConstraint value);
+                      operator<<(std::ostream & out, MeshExtractionEnums::MovementConstraint value);
 MeshExtraction_EXPORT std::ostream &
-operator<<(std::ostream & out, MeshExtractionEnums::EdgeSwapCriterion value);
+                      operator<<(std::ostream & out, MeshExtractionEnums::EdgeSwapCriterion value);
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & out, MeshExtractionEnums::EdgeSearchDirection value);
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & out, MeshExtractionEnums::RefinementOperation value);
 
 } // namespace itk
 

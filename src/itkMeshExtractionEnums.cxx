@@ -97,4 +97,34 @@ operator<<(std::ostream & out, MeshExtractionEnums::EdgeSwapCriterion value)
   }
   return out << "INVALID VALUE FOR itk::MeshExtractionEnums::EdgeSwapCriterion";
 }
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::EdgeSearchDirection value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::EdgeSearchDirection::ImageGradient:
+      return out << "itk::MeshExtractionEnums::EdgeSearchDirection::ImageGradient";
+    case MeshExtractionEnums::EdgeSearchDirection::VertexNormal:
+      return out << "itk::MeshExtractionEnums::EdgeSearchDirection::VertexNormal";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::EdgeSearchDirection";
+}
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::RefinementOperation value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::RefinementOperation::Initial:
+      return out << "itk::MeshExtractionEnums::RefinementOperation::Initial";
+    case MeshExtractionEnums::RefinementOperation::EdgeDetection:
+      return out << "itk::MeshExtractionEnums::RefinementOperation::EdgeDetection";
+    case MeshExtractionEnums::RefinementOperation::EdgeSwap:
+      return out << "itk::MeshExtractionEnums::RefinementOperation::EdgeSwap";
+    case MeshExtractionEnums::RefinementOperation::Smoothing:
+      return out << "itk::MeshExtractionEnums::RefinementOperation::Smoothing";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::RefinementOperation";
+}
 } // namespace itk

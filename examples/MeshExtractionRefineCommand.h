@@ -1,0 +1,444 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef MeshExtractionRefineCommand_h
+#define MeshExtractionRefineCommand_h
+
+#include "MeshExtractionCommandHelpers.h"
+#include "MeshExtractionQualityCommand.h"
+#include "itkMeshExtractionGeodesicSphere.h"
+#include "itkMeshSurfaceDistanceCalculator.h"
+#include "itkQuadEdgeMesh.h"
+#include "itkScaleSpaceEdgeMeshRefinementFilter.h"
+#include "itkSurfaceNetsImageToMeshFilter.h"
+#include "itkTriangleMeshQualityCalculator.h"
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+
+namespace MeshExtractionCLI
+{
+// ------------------------------------------------------------------------------
+// refine
+// ------------------------------------------------------------------------------
+using RefineMeshType = itk::QuadEdgeMesh<double, 3>;
+using RefineImageType = itk::Image<float, 3>;
+
+/** A triangle QuadEdgeMesh from any mesh file ITK reads (quadrilaterals split); a
+ * mesh the quad-edge structure cannot hold is refused with a clear error. */
+inline RefineMeshType::Pointer
+ReadRefineMesh(const std::string & path)
+{
+  const IOMeshType::Pointer     mesh = ReadMeshFile(path);
+  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  auto                          out = RefineMeshType::New();
+  try
+  {
+    ME::FillMesh(triangles, *out);
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which "
+                                 << "'refine' needs: " << Describe(e));
+  }
+  return out;
+}
+
+/** --initial sphere: a geodesic sphere (--subdivisions, --radius, --center). */
+inline RefineMeshType::Pointer
+InitialSphereMesh(const Arguments & args, const RefineImageType * image)
+{
+  if (!args.Has("radius"))
+  {
+    throw UsageError("--initial sphere needs --radius MM");
+  }
+  const double radius = args.GetDouble("radius", 0.0);
+  if (!(radius > 0.0))
+  {
+    throw UsageError("--radius must be > 0, got '" + args.Get("radius") + "'");
+  }
+  const long subdivisions = args.GetInteger("subdivisions", 3);
+  if (subdivisions < 0 || subdivisions > 7)
+  {
+    throw UsageError("--subdivisions must be in 0..7, got " + std::to_string(subdivisions));
+  }
+  ME::Vec3 center;
+  if (args.Has("center"))
+  {
+    const auto c = args.GetNumbers("center", 3);
+    center = ME::MakeVec3(c[0], c[1], c[2]);
+  }
+  else
+  {
+    // The physical centre of the image.
+    const auto                      region = image->GetLargestPossibleRegion();
+    itk::ContinuousIndex<double, 3> middle;
+    RefineImageType::PointType      p;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      middle[d] = static_cast<double>(region.GetIndex(d)) + 0.5 * (static_cast<double>(region.GetSize(d)) - 1.0);
+    }
+    image->TransformContinuousIndexToPhysicalPoint(middle, p);
+    center = ME::MakeVec3(p[0], p[1], p[2]);
+  }
+  auto mesh = RefineMeshType::New();
+  ME::FillMesh(ME::MakeGeodesicSphere(static_cast<unsigned int>(subdivisions), center, radius), *mesh);
+  std::cerr << "  initial mesh: geodesic sphere, " << subdivisions << " subdivisions, radius " << radius
+            << " mm, centre " << center << '\n';
+  return mesh;
+}
+
+/** --initial surfacenets: SurfaceNets of the threshold --iso (no relaxation, or
+ * --relaxation sna). */
+inline RefineMeshType::Pointer
+InitialSurfaceNetsMesh(const Arguments & args, const RefineImageType * image)
+{
+  if (!args.Has("iso"))
+  {
+    throw UsageError("--initial surfacenets needs --iso V (the threshold of the rough segmentation)");
+  }
+  const std::string inside = args.Get("inside", "above");
+  if (inside != "above" && inside != "below")
+  {
+    throw UsageError("--inside must be above or below, got '" + inside + "'");
+  }
+  const std::string relaxation = args.Get("relaxation", "none");
+  if (relaxation != "none" && relaxation != "sna")
+  {
+    throw UsageError("--relaxation must be none or sna, got '" + relaxation + "'");
+  }
+  using FilterType = itk::SurfaceNetsImageToMeshFilter<RefineImageType, RefineMeshType>;
+  auto filter = FilterType::New();
+  filter->SetInput(image);
+  filter->SetIsoValue(args.GetDouble("iso", 0.0));
+  filter->SetInsideIsAboveIsoValue(inside == "above");
+  filter->SetRelaxation(relaxation == "none" ? itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::None
+                                             : itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::Averaging);
+  Stopwatch watch;
+  filter->Update();
+  RefineMeshType::Pointer mesh = filter->GetOutput();
+  mesh->DisconnectPipeline();
+  std::cerr << "  initial mesh: SurfaceNets (" << relaxation << ") of the voxels " << inside << ' ' << args.Get("iso")
+            << ", " << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces() << " triangles, "
+            << std::fixed << std::setprecision(2) << watch.Seconds() << " s\n"
+            << std::defaultfloat;
+  return mesh;
+}
+
+/** The largest connected component (by number of triangles) of a triangle mesh:
+ * threshold meshes of real images carry small islands whose vertices smoothing moves
+ * far, which would end every cycle after one smoothing step. */
+inline RefineMeshType::Pointer
+LargestComponent(const RefineMeshType * mesh)
+{
+  const ME::IndexedTriangleMesh in = ME::MakeIndexedTriangleMesh(*mesh);
+  const ME::MeshTopology        topology = ME::BuildMeshTopology(in);
+  std::vector<std::size_t>      size(topology.numberOfComponents, 0);
+  for (const auto c : topology.triangleComponent)
+  {
+    ++size[c];
+  }
+  const auto largest = static_cast<std::uint32_t>(std::max_element(size.begin(), size.end()) - size.begin());
+  ME::IndexedTriangleMesh    out;
+  std::vector<std::uint32_t> index(in.points.size(), std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t t = 0; t < in.triangles.size(); ++t)
+  {
+    if (topology.triangleComponent[t] != largest)
+    {
+      continue;
+    }
+    ME::TriangleIndices triangle;
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t v = in.triangles[t][k];
+      if (index[v] == std::numeric_limits<std::uint32_t>::max())
+      {
+        index[v] = static_cast<std::uint32_t>(out.points.size());
+        out.points.push_back(in.points[v]);
+      }
+      triangle[k] = index[v];
+    }
+    out.triangles.push_back(triangle);
+  }
+  auto result = RefineMeshType::New();
+  ME::FillMesh(out, *result);
+  std::cerr << "  largest component: " << result->GetNumberOfPoints() << " points, " << out.triangles.size()
+            << " triangles (of " << topology.numberOfComponents << " components)\n";
+  return result;
+}
+
+inline MeasuredMesh
+MeasureForRefine(const RefineMeshType * mesh, const std::string & name, const itk::ImplicitSurfaceFunction * reference)
+{
+  auto calculator = itk::TriangleMeshQualityCalculator<RefineMeshType>::New();
+  calculator->SetMesh(mesh);
+  calculator->Compute();
+  MeasuredMesh m;
+  m.name = name;
+  m.quality = calculator->GetReport();
+  if (reference != nullptr)
+  {
+    auto distance = itk::MeshSurfaceDistanceCalculator<RefineMeshType>::New();
+    distance->SetMesh(mesh);
+    distance->SetReferenceSurface(reference);
+    distance->Compute();
+    m.hasDistance = true;
+    m.distance = distance->GetReport();
+  }
+  return m;
+}
+
+inline int
+RunRefine(const Arguments & args)
+{
+  using Direction = itk::MeshExtractionEnums::EdgeSearchDirection;
+  const bool hasInitial = args.Has("initial");
+  if (hasInitial && args.positional.size() != 2)
+  {
+    throw UsageError("with --initial give IMAGE and OUT only");
+  }
+  if (!hasInitial && args.positional.size() != 3)
+  {
+    throw UsageError("'refine' expects IMAGE MESH OUT (or IMAGE OUT with --initial sphere|surfacenets)");
+  }
+  const std::string initial = args.Get("initial");
+  if (hasInitial && initial != "sphere" && initial != "surfacenets")
+  {
+    throw UsageError("--initial must be sphere or surfacenets, got '" + initial + "'");
+  }
+  const char * sphereOptions[] = { "radius", "center", "subdivisions" };
+  for (const char * option : sphereOptions)
+  {
+    if (args.Has(option) && initial != "sphere")
+    {
+      throw UsageError(std::string("--") + option + " applies to --initial sphere");
+    }
+  }
+  const char * netsOptions[] = { "iso", "inside", "relaxation" };
+  for (const char * option : netsOptions)
+  {
+    if (args.Has(option) && initial != "surfacenets")
+    {
+      throw UsageError(std::string("--") + option + " applies to --initial surfacenets");
+    }
+  }
+  if (initial == "sphere" && !args.Has("radius"))
+  {
+    throw UsageError("--initial sphere needs --radius MM");
+  }
+  if (initial == "surfacenets" && !args.Has("iso"))
+  {
+    throw UsageError("--initial surfacenets needs --iso V (the threshold of the rough segmentation)");
+  }
+  if (!args.Has("max-deviation"))
+  {
+    throw UsageError("give the largest distance between the initial mesh and the object's edge: --max-deviation MM");
+  }
+  const double deviation = args.GetDouble("max-deviation", 0.0);
+  const double target = args.GetDouble("target-quality", 0.9);
+  const long   cycles = args.GetInteger("cycles", 10);
+  const long   smoothingSteps = args.GetInteger("smoothing-steps", 20);
+  const long   perOctave = args.GetInteger("scales-per-octave", 4);
+  const long   threads = args.GetInteger("threads", 0);
+  if (cycles < 0 || smoothingSteps < 1 || perOctave < 1 || threads < 0)
+  {
+    throw UsageError("--cycles must be >= 0, --smoothing-steps and --scales-per-octave >= 1, --threads >= 0");
+  }
+  const std::string search = args.Get("search", "gradient");
+  if (search != "gradient" && search != "normal")
+  {
+    throw UsageError("--search must be gradient or normal, got '" + search + "'");
+  }
+
+  const std::string & imagePath = args.positional[0];
+  const std::string & outputPath = args.positional.back();
+  Stopwatch           watch;
+  std::cerr << "refine: " << imagePath << '\n';
+  const RefineImageType::Pointer image = ReadImageFile<RefineImageType>(imagePath);
+  std::cerr << "  image " << image->GetLargestPossibleRegion().GetSize() << " voxels of " << image->GetSpacing()
+            << " mm\n";
+  RefineMeshType::Pointer mesh;
+  if (initial == "sphere")
+  {
+    mesh = InitialSphereMesh(args, image);
+  }
+  else if (initial == "surfacenets")
+  {
+    mesh = InitialSurfaceNetsMesh(args, image);
+  }
+  else
+  {
+    mesh = ReadRefineMesh(args.positional[1]);
+    std::cerr << "  initial mesh: " << args.positional[1] << ", " << mesh->GetNumberOfPoints() << " points, "
+              << mesh->GetNumberOfFaces() << " triangles\n";
+  }
+
+  if (args.Has("largest-component"))
+  {
+    mesh = LargestComponent(mesh);
+  }
+
+  itk::ImplicitSurfaceFunction::Pointer reference;
+  double                                radius = std::numeric_limits<double>::quiet_NaN();
+  if (args.Has("phantom"))
+  {
+    const ME::PhantomShape shape = ShapeFromName(args.Get("phantom"));
+    reference = ME::MakePhantomSurface(shape, ReadImageGrid(imagePath));
+    if (const auto * sphere = dynamic_cast<const itk::SphereImplicitSurface *>(reference.GetPointer()))
+    {
+      radius = sphere->GetRadius();
+    }
+  }
+  MeasuredMesh before;
+  if (args.Has("report"))
+  {
+    before = MeasureForRefine(mesh, "initial", reference);
+  }
+
+  using FilterType = itk::ScaleSpaceEdgeMeshRefinementFilter<RefineMeshType, RefineImageType>;
+  auto filter = FilterType::New();
+  filter->SetInput(mesh);
+  filter->SetInputImage(image);
+  filter->SetMaximumDeviation(deviation);
+  filter->SetTargetQuality(target);
+  filter->SetMaximumNumberOfCycles(static_cast<unsigned int>(cycles));
+  filter->SetMaximumNumberOfSmoothingSteps(static_cast<unsigned int>(smoothingSteps));
+  filter->SetNumberOfScalesPerOctave(static_cast<unsigned int>(perOctave));
+  filter->SetMinimumScale(args.GetDouble("minimum-scale", 0.0));
+  filter->SetSearchDirection(search == "gradient" ? Direction::ImageGradient : Direction::VertexNormal);
+  filter->SetSubSampleRefinement(!args.Has("thesis-detector"));
+  filter->SetComputeInaccuracy(!args.Has("no-inaccuracy"));
+  filter->SetReferenceSurface(reference);
+  if (threads > 0)
+  {
+    filter->SetNumberOfWorkUnits(static_cast<unsigned int>(threads));
+  }
+  ReportProgress(filter.GetPointer(), "refine");
+  Stopwatch refineWatch;
+  filter->Update();
+  const double            refineSeconds = refineWatch.Seconds();
+  RefineMeshType::Pointer output = filter->GetOutput();
+  output->DisconnectPipeline();
+
+  const auto & steps = filter->GetSteps();
+  std::cout << "scale-space refinement (thesis 4.2.4): maximum deviation " << deviation << " mm, target quality "
+            << target << ", scales "
+            << ME::ScaleSpaceScales(deviation,
+                                    ME::ResolveMinimumScale(image->GetSpacing(), filter->GetMinimumScale()),
+                                    static_cast<unsigned int>(perOctave))
+                 .size()
+            << " (" << deviation << " .. " << ME::ResolveMinimumScale(image->GetSpacing(), filter->GetMinimumScale())
+            << " mm)\n";
+  filter->PrintSteps(std::cout, radius);
+  double      edgeDetectionSeconds = 0.0;
+  std::size_t edgeDetections = 0;
+  for (const auto & s : steps)
+  {
+    if (s.operation == itk::MeshExtractionEnums::RefinementOperation::EdgeDetection)
+    {
+      edgeDetectionSeconds += s.seconds;
+      ++edgeDetections;
+    }
+  }
+  std::cout << filter->GetNumberOfCycles() << " cycles, target quality "
+            << (filter->GetTargetQualityReached() ? "reached" : "NOT reached") << "; " << edgeDetections
+            << " ED steps, " << std::fixed << std::setprecision(3) << edgeDetectionSeconds << " s in ED (the first "
+            << (steps.size() > 1 ? steps[1].seconds : 0.0) << " s with the scale space), " << refineSeconds
+            << " s in all\n"
+            << std::defaultfloat;
+  if (args.Has("csv"))
+  {
+    std::ofstream out(args.Get("csv"));
+    if (!out)
+    {
+      itkGenericExceptionMacro("cannot write '" << args.Get("csv") << "'");
+    }
+    ME::WriteScaleSpaceRefinementCSV(out, steps);
+  }
+  WriteMeshFile(output.GetPointer(), outputPath);
+  std::cerr << "  wrote " << outputPath << " (" << output->GetNumberOfPoints() << " points, "
+            << output->GetNumberOfFaces() << " triangles) in " << std::fixed << std::setprecision(2) << watch.Seconds()
+            << " s\n"
+            << std::defaultfloat;
+  if (args.Has("report"))
+  {
+    const MeasuredMesh after = MeasureForRefine(output, outputPath, reference);
+    before.quality.Print(std::cout, "before: initial mesh");
+    if (before.hasDistance)
+    {
+      before.distance.Print(std::cout);
+    }
+    std::cout << '\n';
+    after.quality.Print(std::cout, "after: " + outputPath);
+    if (after.hasDistance)
+    {
+      after.distance.Print(std::cout);
+    }
+    std::cout << '\n';
+    PrintComparison({ before, after }, std::cout);
+  }
+  return 0;
+}
+
+inline Command
+MakeRefineCommand()
+{
+  Command c;
+  c.name = "refine";
+  c.summary = "move a rough mesh onto the image's edges and improve it (scale-space ED/ES/S protocol)";
+  c.usage = "IMAGE MESH OUT --max-deviation D [options]   |   meshextraction refine IMAGE OUT --initial "
+            "sphere|surfacenets --max-deviation D [options]";
+  c.description = "Thesis chapter 4 (ScaleSpaceEdgeMeshRefinementFilter): for data a threshold cannot segment (noise,\n"
+                  "MRI bias fields). Starting from a rough mesh MESH (any format ITK reads), a geodesic sphere or a\n"
+                  "SurfaceNets mesh of a threshold, it alternates scale-space edge detection (ED: every vertex moves\n"
+                  "along the image gradient to the edge found coarse-to-fine from sigma = D down to the voxel\n"
+                  "length), regularity edge swaps (ES) and centroid smoothing (S) until the mean q_area reaches\n"
+                  "--target-quality, and ends with ED and ES. D is the largest distance between the initial mesh and\n"
+                  "the object's edge, in mm. Prints the step table (thesis Table 4.1) and writes OUT (format from\n"
+                  "its extension). Distances are physical (spacing, origin, direction).";
+  c.options = {
+    { "max-deviation", "MM", "largest distance from the initial mesh to the edge (capture range)", "required" },
+    { "target-quality", "Q", "mean q_area to reach, in (0, 1]", "0.9" },
+    { "initial", "sphere|surfacenets", "build the initial mesh instead of reading MESH", "" },
+    { "radius", "MM", "sphere: radius", "" },
+    { "center", "X,Y,Z", "sphere: centre", "the image's centre" },
+    { "subdivisions", "N", "sphere: icosahedron subdivisions (10*4^N+2 vertices)", "3" },
+    { "iso", "V", "surfacenets: threshold of the rough segmentation", "" },
+    { "inside", "above|below", "surfacenets: which side of --iso is the object", "above" },
+    { "relaxation", "none|sna", "surfacenets: relaxation of the rough mesh", "none" },
+    { "largest-component", "", "keep only the initial mesh's largest connected component", "" },
+    { "cycles", "N", "largest number of S...ED ES cycles after the first ED ES", "10" },
+    { "smoothing-steps", "N", "largest number of smoothing steps per cycle", "20" },
+    { "scales-per-octave", "N", "scales per doubling of sigma", "4" },
+    { "minimum-scale", "MM", "smallest scale", "the voxel length (smallest spacing)" },
+    { "search", "gradient|normal", "search line: image gradient or vertex normal", "gradient" },
+    { "thesis-detector", "", "no sub-sample refinement of the edge (the thesis' 5 samples only)", "" },
+    { "no-inaccuracy", "", "skip the inaccuracy measurement after each ED", "" },
+    { "phantom", "NAME", "IMAGE is this phantom: add distances to its exact surface to the table", "" },
+    { "csv", "FILE", "write the step table as CSV", "" },
+    { "report", "", "print the quality (and phantom distances) before and after", "" },
+    { "threads", "N", "work units (0: all cores)", "0" },
+  };
+  c.minimumPositional = 2;
+  c.maximumPositional = 3;
+  c.run = RunRefine;
+  return c;
+}
+} // namespace MeshExtractionCLI
+
+#endif

@@ -1,0 +1,428 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef itkScaleSpaceEdgeMeshRefinementFilter_hxx
+#define itkScaleSpaceEdgeMeshRefinementFilter_hxx
+
+#include "itkScaleSpaceEdgeMeshRefinementFilter.h"
+#include "itkMeshExtractionDistanceAnalysis.h"
+#include "itkTriangleMeshQualityCalculator.h"
+#include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <utility>
+
+namespace itk
+{
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::ScaleSpaceEdgeMeshRefinementFilter()
+{
+  // The image is a named input; GenerateData() reports a missing one.
+  this->AddOptionalInputName("InputImage");
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+MeshExtraction::ScaleSpaceEdgeDetectionParameters
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::MakeDetectorParameters() const
+{
+  MeshExtraction::ScaleSpaceEdgeDetectionParameters p;
+  p.maximumDeviation = m_MaximumDeviation;
+  p.minimumScale = m_MinimumScale;
+  p.scalesPerOctave = m_NumberOfScalesPerOctave;
+  p.searchDirection = m_SearchDirection;
+  p.subSampleRefinement = m_SubSampleRefinement;
+  p.computeInaccuracy = m_ComputeInaccuracy;
+  p.numberOfWorkUnits = this->GetNumberOfWorkUnits();
+  return p;
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+std::vector<MeshExtraction::Vec3>
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Positions() const
+{
+  std::vector<MeshExtraction::Vec3> positions;
+  const auto *                      points = m_Working->GetPoints();
+  positions.reserve(points->Size());
+  for (auto it = points->Begin(); it != points->End(); ++it)
+  {
+    positions.push_back(MeshExtraction::ToVec3(it.Value()));
+  }
+  return positions;
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+auto
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Record(
+  OperationEnum                             operation,
+  unsigned int                              cycle,
+  double                                    seconds,
+  const std::vector<MeshExtraction::Vec3> * before) -> StepType &
+{
+  using MeshExtraction::Dot;
+  using MeshExtraction::TriangleNormal;
+  using MeshExtraction::TriangleQArea;
+  StepType step;
+  step.operation = operation;
+  step.cycle = cycle;
+  step.seconds = seconds;
+
+  auto calculator = TriangleMeshQualityCalculator<OutputMeshType>::New();
+  calculator->SetMesh(m_Working);
+  calculator->SetComputeSelfIntersections(false);
+  calculator->SetComputeOutwardOrientation(false);
+  calculator->Compute();
+  const auto & report = calculator->GetReport();
+  step.numberOfPoints = report.numberOfPoints;
+  step.numberOfTriangles = report.numberOfTriangles;
+  step.meanMinimumAngle = report.minimumAngle.mean;
+  step.meanQArea = report.qArea.mean;
+  step.minimumQArea = report.qArea.minimum;
+  step.degenerateTriangles = report.degenerateTriangles;
+  step.nonManifold = report.nonManifoldEdges + report.nonManifoldVertices;
+
+  const std::vector<MeshExtraction::Vec3> positions = this->Positions();
+  if (before != nullptr && before->size() == positions.size())
+  {
+    std::int64_t turned = 0;
+    for (const auto & t : m_Triangles)
+    {
+      // Turned by more than 90 degrees (the guards allow anything below 90; a
+      // relative tolerance keeps rounding at exactly 90 degrees from counting).
+      const auto & b = *before;
+      const auto   n0 = TriangleNormal(b[t[0]], b[t[1]], b[t[2]]);
+      const auto   n1 = TriangleNormal(positions[t[0]], positions[t[1]], positions[t[2]]);
+      if (TriangleQArea(b[t[0]], b[t[1]], b[t[2]]) > 0.0 &&
+          Dot(n0, n1) < -1e-6 * MeshExtraction::Norm(n0) * MeshExtraction::Norm(n1))
+      {
+        ++turned;
+      }
+    }
+    step.invertedTriangles = turned;
+  }
+  if (m_ReferenceSurface)
+  {
+    const std::vector<double> d =
+      MeshExtraction::SignedDistancesToSurface(positions, *m_ReferenceSurface, this->GetNumberOfWorkUnits());
+    double sum = 0.0;
+    for (const double x : d)
+    {
+      sum += x;
+    }
+    const double mean = d.empty() ? 0.0 : sum / static_cast<double>(d.size());
+    double       squares = 0.0;
+    for (const double x : d)
+    {
+      squares += (x - mean) * (x - mean);
+    }
+    step.referenceDistanceMean = mean;
+    step.referenceDistanceVariance = d.empty() ? 0.0 : squares / static_cast<double>(d.size());
+  }
+  m_Steps.push_back(step);
+  return m_Steps.back();
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+void
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::EdgeDetection(unsigned int cycle)
+{
+  const std::vector<MeshExtraction::Vec3>             before = this->Positions();
+  const MeshExtraction::ScaleSpaceEdgeDetectionResult result =
+    m_Detector.Run(*m_Working, *this->GetInputImage(), this->MakeDetectorParameters());
+  StepType & step = this->Record(OperationEnum::EdgeDetection, cycle, result.seconds, &before);
+  step.inaccuracy = result.inaccuracy;
+  step.changes = static_cast<std::int64_t>(result.movedVertices);
+  step.rejectedMoves = static_cast<std::int64_t>(result.rejectedMoves + result.undoneMoves);
+  step.maximumTravel = result.maximumDisplacement;
+  step.meanTravel = result.meanDisplacement;
+  m_AfterEdgeDetection = this->Positions();
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+void
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::EdgeSwap(unsigned int cycle)
+{
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  auto           key = [](std::uint32_t a, std::uint32_t b) { return a < b ? Edge(a, b) : Edge(b, a); };
+  const auto     start = std::chrono::steady_clock::now();
+  std::set<Edge> before;
+  for (const auto & t : m_Triangles)
+  {
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      before.insert(key(t[k], t[(k + 1) % 3]));
+    }
+  }
+  const typename OutputMeshType::Pointer previous = m_Working;
+  auto                                   swap = EdgeSwapFilterType::New();
+  swap->SetInput(m_Working);
+  swap->Update();
+  m_Working = swap->GetOutput();
+  m_Working->DisconnectPipeline();
+
+  // EdgeSwapQuadEdgeMeshFilter checks each swap locally; on a rough surface a new
+  // triangle can still cut through a neighbouring part. Such swaps are flipped back
+  // (the new edge of an intersecting new triangle), and if that does not clear them
+  // the whole ES step is dropped.
+  SizeValueType flippedBack = 0;
+  bool          dropped = false;
+  auto flip = QuadEdgeMeshEulerOperatorFlipEdgeFunction<OutputMeshType, typename OutputMeshType::QEType>::New();
+  for (unsigned int round = 0;; ++round)
+  {
+    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*m_Working);
+    std::vector<std::uint8_t>                 isNew(indexed.triangles.size(), 0);
+    std::vector<std::uint32_t>                queries;
+    for (std::uint32_t f = 0; f < indexed.triangles.size(); ++f)
+    {
+      const auto & t = indexed.triangles[f];
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        isNew[f] = isNew[f] || before.count(key(t[k], t[(k + 1) % 3])) == 0 ? 1 : 0;
+      }
+      if (isNew[f])
+      {
+        queries.push_back(f);
+      }
+    }
+    std::vector<std::uint32_t> bad;
+    for (const auto & pair : MeshExtraction::FindSelfIntersections(indexed, &queries))
+    {
+      for (const auto f : { pair.first, pair.second })
+      {
+        if (isNew[f])
+        {
+          bad.push_back(f);
+        }
+      }
+    }
+    if (bad.empty())
+    {
+      break;
+    }
+    SizeValueType flips = 0;
+    if (round < 10)
+    {
+      std::sort(bad.begin(), bad.end());
+      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+      for (const auto f : bad)
+      {
+        const auto & t = indexed.triangles[f];
+        for (unsigned int k = 0; k < 3; ++k)
+        {
+          if (before.count(key(t[k], t[(k + 1) % 3])) > 0)
+          {
+            continue;
+          }
+          auto * e = m_Working->FindEdge(indexed.pointIds[t[k]], indexed.pointIds[t[(k + 1) % 3]]);
+          if (e != nullptr && e->IsInternal() && e->IsLnextOfTriangle() && e->GetSym()->IsLnextOfTriangle())
+          {
+            flip->SetInput(m_Working);
+            if (flip->Evaluate(e) != nullptr)
+            {
+              ++flips;
+              break; // this triangle is gone
+            }
+          }
+        }
+      }
+    }
+    if (flips == 0)
+    {
+      m_Working = previous;
+      dropped = true;
+      break;
+    }
+    flippedBack += flips;
+  }
+  m_Triangles = MeshExtraction::MakeIndexedTriangleMesh(*m_Working).triangles;
+  m_Topology = MeshExtraction::BuildMeshTopology(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  StepType &   step = this->Record(OperationEnum::EdgeSwap, cycle, seconds, nullptr);
+  step.changes = dropped
+                   ? 0
+                   : std::max<std::int64_t>(
+                       0, static_cast<std::int64_t>(swap->GetNumberOfSwaps()) - static_cast<std::int64_t>(flippedBack));
+  step.rejectedMoves =
+    dropped ? static_cast<std::int64_t>(swap->GetNumberOfSwaps()) : static_cast<std::int64_t>(flippedBack);
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+double
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Smoothing(unsigned int   cycle,
+                                                                               SmootherType & smoother)
+{
+  const std::vector<MeshExtraction::Vec3> before = this->Positions();
+  const auto                              start = std::chrono::steady_clock::now();
+  typename SmootherType::StepParameters   parameters;
+  parameters.weights = MeshExtractionEnums::SmoothingWeights::Uniform;
+  parameters.update = MeshExtractionEnums::SmoothingUpdate::Batch;
+  parameters.move.constraint = MeshExtractionEnums::MovementConstraint::Centroid;
+  parameters.numberOfWorkUnits = this->GetNumberOfWorkUnits();
+  typename SmootherType::Counters counters;
+  smoother.Step(parameters, counters);
+
+  // The smoothing guard checks one vertex at a time: undo the moves that fold the
+  // surface or make it cut through itself (see MeshExtraction::UndoFoldingMoves).
+  MeshExtraction::IndexedTriangleMesh current;
+  current.points = this->Positions();
+  current.triangles = m_Triangles;
+  const std::size_t undone =
+    MeshExtraction::UndoFoldingMoves(current, m_Topology, before, parameters.degenerateQAreaTolerance);
+  if (undone > 0)
+  {
+    auto *      points = m_Working->GetPoints();
+    std::size_t i = 0;
+    for (auto it = points->Begin(); it != points->End(); ++it, ++i)
+    {
+      if (current.points[i] == before[i])
+      {
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          it.Value()[d] = static_cast<typename OutputMeshType::PointType::ValueType>(before[i][d]);
+        }
+      }
+    }
+    points->Modified();
+    m_Working->Modified();
+    smoother.Initialize(m_Working, true); // it keeps its own copy of the positions
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::vector<MeshExtraction::Vec3> after = this->Positions();
+  double                                  travel = 0.0;
+  double                                  sum = 0.0;
+  for (std::size_t i = 0; i < after.size() && i < m_AfterEdgeDetection.size(); ++i)
+  {
+    const double d = MeshExtraction::Norm(after[i] - m_AfterEdgeDetection[i]);
+    travel = std::max(travel, d);
+    sum += d;
+  }
+  StepType & step = this->Record(OperationEnum::Smoothing, cycle, seconds, &before);
+  step.changes = static_cast<std::int64_t>(counters.moves - counters.rejected) - static_cast<std::int64_t>(undone);
+  step.rejectedMoves = static_cast<std::int64_t>(counters.rejected + undone);
+  step.maximumTravel = travel;
+  step.meanTravel = after.empty() ? 0.0 : sum / static_cast<double>(after.size());
+  return travel;
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+void
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::GenerateData()
+{
+  m_Steps.clear();
+  m_NumberOfCycles = 0;
+  m_TargetQualityReached = false;
+
+  const InputMeshType * input = this->GetInput();
+  if (input == nullptr)
+  {
+    itkExceptionMacro(<< "No input mesh: call SetInput() before Update()");
+  }
+  std::string problem = DetectorType::CheckParameters(this->MakeDetectorParameters());
+  if (problem.empty() && !(m_TargetQuality > 0.0 && m_TargetQuality <= 1.0))
+  {
+    problem = "TargetQuality (the mean q_area to reach) must be in (0, 1], got " + std::to_string(m_TargetQuality);
+  }
+  if (problem.empty() && m_MaximumNumberOfSmoothingSteps == 0)
+  {
+    problem = "MaximumNumberOfSmoothingSteps must be >= 1, got 0";
+  }
+  if (problem.empty() && (!(m_MinimumQualityImprovement >= 0.0) || !std::isfinite(m_MinimumQualityImprovement)))
+  {
+    problem =
+      "MinimumQualityImprovement must be a finite number >= 0, got " + std::to_string(m_MinimumQualityImprovement);
+  }
+  if (problem.empty())
+  {
+    problem =
+      MeshExtraction::ScaleSpaceEdgeDetector<InputMeshType, ImageType>::CheckInputs(input, this->GetInputImage());
+  }
+  if (!problem.empty())
+  {
+    itkExceptionMacro(<< problem);
+  }
+
+  m_Working = OutputMeshType::New();
+  CopyMeshToMesh(input, m_Working.GetPointer());
+  m_Triangles = MeshExtraction::MakeIndexedTriangleMesh(*m_Working).triangles;
+  m_Topology = MeshExtraction::BuildMeshTopology(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
+  this->UpdateProgress(0.0f);
+
+  // Thesis section 4.2.4: ED, ES, then cycles of S..., ED, ES until the target.
+  this->Record(OperationEnum::Initial, 0, 0.0, nullptr);
+  this->EdgeDetection(0);
+  this->EdgeSwap(0);
+  double previous = m_Steps.back().meanQArea;
+  while (m_Steps.back().meanQArea < m_TargetQuality && m_NumberOfCycles < m_MaximumNumberOfCycles)
+  {
+    const unsigned int cycle = ++m_NumberOfCycles;
+    SmootherType       smoother;
+    smoother.Initialize(m_Working, true);
+    for (unsigned int s = 0; s < m_MaximumNumberOfSmoothingSteps; ++s)
+    {
+      const double travel = this->Smoothing(cycle, smoother);
+      if (m_Steps.back().meanQArea >= m_TargetQuality || travel > m_MaximumDeviation)
+      {
+        break;
+      }
+    }
+    this->EdgeDetection(cycle);
+    this->EdgeSwap(cycle);
+    this->UpdateProgress(static_cast<float>(cycle) / static_cast<float>(m_MaximumNumberOfCycles));
+    const double quality = m_Steps.back().meanQArea;
+    if (quality < m_TargetQuality && quality - previous < m_MinimumQualityImprovement)
+    {
+      break; // converged below the target
+    }
+    previous = quality;
+  }
+  m_TargetQualityReached = m_Steps.back().meanQArea >= m_TargetQuality;
+
+  CopyMeshToMesh(m_Working.GetPointer(), this->GetOutput());
+  m_Working = nullptr;
+  m_AfterEdgeDetection.clear();
+  m_Triangles.clear();
+  m_Topology = MeshExtraction::MeshTopology();
+  m_Detector.ReleaseScaleSpace();
+  this->UpdateProgress(1.0f);
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+void
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::PrintSelf(std::ostream & os, Indent indent) const
+{
+  Superclass::PrintSelf(os, indent);
+  os << indent << "MaximumDeviation: " << m_MaximumDeviation << std::endl;
+  os << indent << "TargetQuality: " << m_TargetQuality << std::endl;
+  os << indent << "MaximumNumberOfCycles: " << m_MaximumNumberOfCycles << std::endl;
+  os << indent << "MaximumNumberOfSmoothingSteps: " << m_MaximumNumberOfSmoothingSteps << std::endl;
+  os << indent << "MinimumQualityImprovement: " << m_MinimumQualityImprovement << std::endl;
+  os << indent << "MinimumScale: " << m_MinimumScale << std::endl;
+  os << indent << "NumberOfScalesPerOctave: " << m_NumberOfScalesPerOctave << std::endl;
+  os << indent << "SearchDirection: " << m_SearchDirection << std::endl;
+  os << indent << "SubSampleRefinement: " << (m_SubSampleRefinement ? "On" : "Off") << std::endl;
+  os << indent << "ComputeInaccuracy: " << (m_ComputeInaccuracy ? "On" : "Off") << std::endl;
+  os << indent << "ReferenceSurface: " << (m_ReferenceSurface ? "set" : "(none)") << std::endl;
+  os << indent << "NumberOfCycles: " << m_NumberOfCycles << std::endl;
+  os << indent << "TargetQualityReached: " << (m_TargetQualityReached ? "true" : "false") << std::endl;
+  os << indent << "Steps: " << m_Steps.size() << std::endl;
+}
+} // namespace itk
+
+#endif
