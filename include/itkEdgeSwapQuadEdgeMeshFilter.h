@@ -24,6 +24,9 @@
 #include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
 #include "itkQuadEdgeMeshToQuadEdgeMeshFilter.h"
 
+#include <algorithm>
+#include <vector>
+
 namespace itk
 {
 /** \class EdgeSwapQuadEdgeMeshFilter
@@ -61,6 +64,10 @@ namespace itk
  * the pass left it; it stops after a pass without a swap or after
  * MaximumNumberOfIterations passes (default 20, >= 0). The result is deterministic.
  * Only internal edges between two triangles are candidates; boundary edges stay.
+ * Edges next to a locked point (SetLockedPoints: an edge whose two triangles have a
+ * locked corner) are not swapped either, so the triangles around those points stay
+ * as they are; ScaleSpaceEdgeMeshRefinementFilter locks the places where a swap made
+ * the surface cut through itself and swaps again.
  * Points keep their identifiers, positions and point data; faces are re-created by
  * the swaps, so face identifiers change and face (cell) data does not follow them.
  *
@@ -118,6 +125,22 @@ public:
   itkSetMacro(MinimumQAreaRatio, double);
   itkGetConstMacro(MinimumQAreaRatio, double);
 
+  /** Points around which no edge is swapped (default none). Identifiers that are not
+   * points of the mesh are ignored. */
+  void
+  SetLockedPoints(const std::vector<OutputPointIdentifier> & points)
+  {
+    m_LockedPoints = points;
+    std::sort(m_LockedPoints.begin(), m_LockedPoints.end());
+    m_LockedPoints.erase(std::unique(m_LockedPoints.begin(), m_LockedPoints.end()), m_LockedPoints.end());
+    this->Modified();
+  }
+  const std::vector<OutputPointIdentifier> &
+  GetLockedPoints() const
+  {
+    return m_LockedPoints;
+  }
+
   /** Results of the last update. */
   itkGetConstMacro(NumberOfSwaps, SizeValueType);
   itkGetConstMacro(NumberOfRefusedSwaps, SizeValueType);
@@ -146,6 +169,8 @@ private:
   double                m_FeatureAngle{ 60.0 };
   double                m_DegenerateQAreaTolerance{ 1e-4 };
   double                m_MinimumQAreaRatio{ 0.0 };
+
+  std::vector<OutputPointIdentifier> m_LockedPoints;
 
   SizeValueType m_NumberOfSwaps{ 0 };
   SizeValueType m_NumberOfRefusedSwaps{ 0 };

@@ -85,6 +85,9 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
   }
   std::sort(edges.begin(), edges.end());
 
+  auto IsLocked = [this](OutputPointIdentifier p) {
+    return std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), p);
+  };
   auto          flip = FlipEdgeFunctionType::New();
   auto *        points = mesh->GetPoints();
   SizeValueType swaps = 0;
@@ -99,10 +102,14 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
     const OutputPointIdentifier b = e->GetDestination();
     const OutputPointIdentifier c = e->GetLnext()->GetDestination();
     const OutputPointIdentifier d = e->GetSym()->GetLnext()->GetDestination();
-    const auto &                pa = points->ElementAt(a);
-    const auto &                pb = points->ElementAt(b);
-    const auto &                pc = points->ElementAt(c);
-    const auto &                pd = points->ElementAt(d);
+    if (!m_LockedPoints.empty() && (IsLocked(a) || IsLocked(b) || IsLocked(c) || IsLocked(d)))
+    {
+      continue;
+    }
+    const auto & pa = points->ElementAt(a);
+    const auto & pb = points->ElementAt(b);
+    const auto & pc = points->ElementAt(c);
+    const auto & pd = points->ElementAt(d);
 
     MeshExtraction::EdgeSwapQuad quad;
     quad.a = ToVec3(pa);
@@ -208,6 +215,7 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::PrintSelf(std::ostream & os
   os << indent << "FeatureAngle: " << m_FeatureAngle << std::endl;
   os << indent << "DegenerateQAreaTolerance: " << m_DegenerateQAreaTolerance << std::endl;
   os << indent << "MinimumQAreaRatio: " << m_MinimumQAreaRatio << std::endl;
+  os << indent << "LockedPoints: " << m_LockedPoints.size() << std::endl;
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << std::endl;
   os << indent << "NumberOfRefusedSwaps: " << m_NumberOfRefusedSwaps << std::endl;
   os << indent << "NumberOfIterations: " << m_NumberOfIterations << std::endl;

@@ -139,7 +139,10 @@ IsValidTriangleAgainstStart(const IndexedTriangleMesh & mesh,
  * (IsValidTriangleAgainstStart), moves their vertices back to the start, and repeats
  * with the triangles around the vertices moved back, until none is left: at worst
  * everything is back where it started. Intersections between triangles that did not
- * change are left alone. Returns the number of vertices moved back.
+ * change are left alone. A closed component whose enclosed (signed) volume changed
+ * sign has turned inside out as a whole — a small component, e.g. the 12 triangles
+ * around one voxel, can do that without any triangle crossing another — and goes back
+ * to the start entirely. Returns the number of vertices moved back.
  * \ingroup MeshExtraction */
 inline std::size_t
 UndoFoldingMoves(IndexedTriangleMesh &     mesh,
@@ -168,7 +171,65 @@ UndoFoldingMoves(IndexedTriangleMesh &     mesh,
       queueAround(v);
     }
   }
+  // Closed components whose signed volume changed sign (turned inside out): all their
+  // vertices go back. Returns the vertices moved back.
+  auto undoInvertedComponents = [&]() {
+    const std::size_t         components = topology.numberOfComponents;
+    std::vector<double>       startVolume(components, 0.0);
+    std::vector<double>       volume(components, 0.0);
+    std::vector<Vec3>         origin(components);
+    std::vector<std::uint8_t> hasOrigin(components, 0);
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    {
+      const std::uint32_t c = topology.triangleComponent[f];
+      const auto &        t = mesh.triangles[f];
+      if (!hasOrigin[c])
+      {
+        hasOrigin[c] = 1;
+        origin[c] = startPositions[t[0]];
+      }
+      const Vec3 & o = origin[c];
+      startVolume[c] += Dot(startPositions[t[0]] - o, Cross(startPositions[t[1]] - o, startPositions[t[2]] - o));
+      volume[c] += Dot(mesh.points[t[0]] - o, Cross(mesh.points[t[1]] - o, mesh.points[t[2]] - o));
+    }
+    std::vector<std::uint8_t> inverted(components, 0);
+    bool                      any = false;
+    for (std::size_t c = 0; c < components; ++c)
+    {
+      const bool closed = c >= topology.componentBoundaryLoops.size() || topology.componentBoundaryLoops[c] == 0;
+      if (closed && ((startVolume[c] > 0.0 && !(volume[c] > 0.0)) || (startVolume[c] < 0.0 && !(volume[c] < 0.0))))
+      {
+        inverted[c] = 1;
+        any = true;
+      }
+    }
+    std::vector<std::uint32_t> back;
+    if (any)
+    {
+      for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+      {
+        if (inverted[topology.triangleComponent[f]])
+        {
+          for (const auto v : mesh.triangles[f])
+          {
+            if (mesh.points[v] != startPositions[v])
+            {
+              mesh.points[v] = startPositions[v];
+              back.push_back(v);
+            }
+          }
+        }
+      }
+    }
+    return back;
+  };
+
   std::size_t undone = 0;
+  for (const auto v : undoInvertedComponents())
+  {
+    ++undone;
+    queueAround(v); // the component is back, but what moved around it may now cut it
+  }
   while (!queries.empty())
   {
     std::sort(queries.begin(), queries.end());
@@ -203,6 +264,15 @@ UndoFoldingMoves(IndexedTriangleMesh &     mesh,
     for (const auto v : back)
     {
       queueAround(v);
+    }
+    if (queries.empty())
+    {
+      // Moving vertices back can in turn leave a component inside out.
+      for (const auto v : undoInvertedComponents())
+      {
+        ++undone;
+        queueAround(v);
+      }
     }
   }
   return undone;

@@ -72,10 +72,12 @@ namespace itk
  * Every operation keeps a valid mesh valid. The guards of the edge detector and of
  * the smoothing look at one vertex at a time, and the edge swap at one quad at a
  * time, so after each ED and S the moves that made the surface fold or cut through
- * itself are undone (MeshExtraction::UndoFoldingMoves, exact intersection tests),
- * and after each ES the swaps whose new triangles intersect the surface are flipped
- * back (or, if that does not clear them, the ES is dropped); the step table counts
- * them with the rejected moves.
+ * itself, or turned a closed component inside out, are undone
+ * (MeshExtraction::UndoFoldingMoves, exact intersection tests, signed volumes), and
+ * after each ES whose new triangles intersect the surface, the corners of those
+ * triangles are locked and the swaps are made again from the mesh before the ES (at
+ * most five attempts, then the ES is dropped); the step table counts them with the
+ * rejected moves.
  *
  * The output has the input's point identifiers; faces are re-created by the swaps.
  * The input must be a triangle mesh inside the image; a missing image, an empty mesh,

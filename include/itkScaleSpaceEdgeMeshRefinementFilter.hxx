@@ -169,23 +169,27 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::EdgeSwap(un
       before.insert(key(t[k], t[(k + 1) % 3]));
     }
   }
-  const typename OutputMeshType::Pointer previous = m_Working;
-  auto                                   swap = EdgeSwapFilterType::New();
-  swap->SetInput(m_Working);
-  swap->Update();
-  m_Working = swap->GetOutput();
-  m_Working->DisconnectPipeline();
-
   // EdgeSwapQuadEdgeMeshFilter checks each swap locally; on a rough surface a new
-  // triangle can still cut through a neighbouring part. Such swaps are flipped back
-  // (the new edge of an intersecting new triangle), and if that does not clear them
-  // the whole ES step is dropped.
-  SizeValueType flippedBack = 0;
-  bool          dropped = false;
-  auto flip = QuadEdgeMeshEulerOperatorFlipEdgeFunction<OutputMeshType, typename OutputMeshType::QEType>::New();
-  for (unsigned int round = 0;; ++round)
+  // triangle can still cut through a neighbouring part. The corners of such triangles
+  // are locked and the swaps are made again from the mesh before the step (a few
+  // times at most; then the ES step is dropped).
+  const typename OutputMeshType::Pointer                previous = m_Working;
+  std::vector<typename OutputMeshType::PointIdentifier> locked;
+  SizeValueType                                         swaps = 0;
+  SizeValueType                                         cutting = 0;
+  bool                                                  dropped = false;
+  for (unsigned int attempt = 0;; ++attempt)
   {
-    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*m_Working);
+    auto swap = EdgeSwapFilterType::New();
+    swap->SetInput(previous);
+    swap->SetLockedPoints(locked);
+    swap->SetNumberOfWorkUnits(this->GetNumberOfWorkUnits());
+    swap->Update();
+    typename OutputMeshType::Pointer candidate = swap->GetOutput();
+    candidate->DisconnectPipeline();
+    swaps = swap->GetNumberOfSwaps();
+
+    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*candidate);
     std::vector<std::uint8_t>                 isNew(indexed.triangles.size(), 0);
     std::vector<std::uint32_t>                queries;
     for (std::uint32_t f = 0; f < indexed.triangles.size(); ++f)
@@ -211,55 +215,34 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::EdgeSwap(un
         }
       }
     }
+    std::sort(bad.begin(), bad.end());
+    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+    cutting += bad.size();
     if (bad.empty())
     {
+      m_Working = candidate;
       break;
     }
-    SizeValueType flips = 0;
-    if (round < 10)
-    {
-      std::sort(bad.begin(), bad.end());
-      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
-      for (const auto f : bad)
-      {
-        const auto & t = indexed.triangles[f];
-        for (unsigned int k = 0; k < 3; ++k)
-        {
-          if (before.count(key(t[k], t[(k + 1) % 3])) > 0)
-          {
-            continue;
-          }
-          auto * e = m_Working->FindEdge(indexed.pointIds[t[k]], indexed.pointIds[t[(k + 1) % 3]]);
-          if (e != nullptr && e->IsInternal() && e->IsLnextOfTriangle() && e->GetSym()->IsLnextOfTriangle())
-          {
-            flip->SetInput(m_Working);
-            if (flip->Evaluate(e) != nullptr)
-            {
-              ++flips;
-              break; // this triangle is gone
-            }
-          }
-        }
-      }
-    }
-    if (flips == 0)
+    if (attempt == 4)
     {
       m_Working = previous;
       dropped = true;
       break;
     }
-    flippedBack += flips;
+    for (const auto f : bad)
+    {
+      for (const auto v : indexed.triangles[f])
+      {
+        locked.push_back(indexed.pointIds[v]);
+      }
+    }
   }
   m_Triangles = MeshExtraction::MakeIndexedTriangleMesh(*m_Working).triangles;
   m_Topology = MeshExtraction::BuildMeshTopology(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   StepType &   step = this->Record(OperationEnum::EdgeSwap, cycle, seconds, nullptr);
-  step.changes = dropped
-                   ? 0
-                   : std::max<std::int64_t>(
-                       0, static_cast<std::int64_t>(swap->GetNumberOfSwaps()) - static_cast<std::int64_t>(flippedBack));
-  step.rejectedMoves =
-    dropped ? static_cast<std::int64_t>(swap->GetNumberOfSwaps()) : static_cast<std::int64_t>(flippedBack);
+  step.changes = dropped ? 0 : static_cast<std::int64_t>(swaps);
+  step.rejectedMoves = dropped ? static_cast<std::int64_t>(swaps) : static_cast<std::int64_t>(cutting);
 }
 
 template <typename TInputMesh, typename TImage, typename TOutputMesh>

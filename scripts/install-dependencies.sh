@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs what MeshExtraction needs on Debian bookworm, from Debian's archive only:
 # ITK 5.2.1, VTK 9.1 (for the comparison tool), GoogleTest, Google Benchmark, the
-# build tools, and the example head CT (invesalius-examples) the main job uses.
+# build tools, and the real data the main job uses: the head CT of invesalius-examples
+# and the Colin27 T1 MRI of mricron-data.
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache
   libinsighttoolkit5-dev libvtk9-dev libgtest-dev libbenchmark-dev
-  python3 invesalius-examples
+  python3 invesalius-examples mricron-data
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -40,7 +40,29 @@ if bash scripts/prepare-data.sh "$out/data"; then
     --title "Head CT (invesalius-examples, 256x256x108, 0.96x0.96x1.5 mm), bone at 300 HU" "${include[@]}"
 fi
 
-# 3. An index page.
+# 3. Scale-space edge refinement (thesis ch. 4): the chapter-4 sphere (100^3, radius 25,
+#    Gaussian noise sigma 2) from a geodesic sphere 3 mm too small, and the brain surface of
+#    the Colin27 T1 MRI (mricron-data), where a threshold cannot separate brain from scalp:
+#    the rough start is a SurfaceNets mesh of the brain-extracted image (ch2bet), refined
+#    against the T1 image (ch2) itself.
+log "chapter-4 sphere with noise: refine a geodesic sphere of radius 22 toward the edge at 25"
+"$me" phantom chapter4-sphere "$out/chapter4-sphere-noise2.nrrd" --noise 2 --seed 1
+"$me" refine "$out/chapter4-sphere-noise2.nrrd" "$out/chapter4-sphere-refined.vtk" --initial sphere --radius 22 \
+  --max-deviation 4 --target-quality 0.9 --phantom chapter4-sphere --csv "$out/refine-chapter4-sphere.csv" \
+  --report > "$out/refine-chapter4-sphere.txt"
+templates=/usr/share/mricron/templates
+if [ -f "$templates/ch2.nii.gz" ] && [ -f "$templates/ch2bet.nii.gz" ]; then
+  log "Colin27 T1 MRI: brain surface by scale-space refinement of a rough SurfaceNets mesh"
+  "$me" extract "$templates/ch2bet.nii.gz" --iso 1 --relaxation sna "$out/brain-rough.vtk"
+  "$me" refine "$templates/ch2.nii.gz" "$out/brain-rough.vtk" "$out/brain-refined.vtk" --largest-component \
+    --max-deviation 3 --target-quality 0.9 --csv "$out/refine-brain.csv" --report > "$out/refine-brain.txt"
+  "$me" report "$out/brain" "$out/brain-rough.vtk" "$out/brain-refined.vtk" \
+    --title "Colin27 T1 MRI (mricron-data, 181x217x181, 1 mm): brain surface, rough and refined"
+else
+  log "mricron-data is not installed: skipping the MRI refinement"
+fi
+
+# 4. An index page.
 {
   echo "<!DOCTYPE html><html><head><meta charset='utf-8'><title>MeshExtraction results</title></head>"
   echo "<body style='font-family:sans-serif;margin:2em'><h1>MeshExtraction results</h1><ul>"

@@ -26,6 +26,8 @@
 #include "itkImplicitSurfaceImageSource.h"
 
 #include "itkGTest.h"
+#include <algorithm>
+#include <array>
 
 #include <functional>
 #include <iomanip>
@@ -329,6 +331,64 @@ TEST(EdgeSwapQuadEdgeMeshFilter, RegularitySwapsRaiseTheValence6ShareOfAMarching
   EXPECT_EQ(after.numberOfPoints, before.numberOfPoints);
   EXPECT_NEAR(after.enclosedVolume, before.enclosedVolume, 1e-3 * before.enclosedVolume);
   EXPECT_EQ(RemainingSwaps(filter->GetOutput(), EdgeSwapParameters()), 0u);
+}
+
+TEST(EdgeSwapQuadEdgeMeshFilter, NoEdgeIsSwappedAroundLockedPoints)
+{
+  const QEMeshType * input = MarchingCubesSphere();
+  // Lock the points of the lower half (z below the centre): the triangles around them
+  // keep their corners, and the upper half still gets its swaps.
+  double zMin = 1e300;
+  double zMax = -1e300;
+  for (auto it = input->GetPoints()->Begin(); it != input->GetPoints()->End(); ++it)
+  {
+    zMin = std::min(zMin, static_cast<double>(it.Value()[2]));
+    zMax = std::max(zMax, static_cast<double>(it.Value()[2]));
+  }
+  std::vector<QEMeshType::PointIdentifier> locked;
+  for (auto it = input->GetPoints()->Begin(); it != input->GetPoints()->End(); ++it)
+  {
+    if (it.Value()[2] < 0.5 * (zMin + zMax))
+    {
+      locked.push_back(it.Index());
+    }
+  }
+  auto triangleSet = [](const QEMeshType * mesh, const std::vector<QEMeshType::PointIdentifier> & around) {
+    std::set<std::array<QEMeshType::PointIdentifier, 3>> triangles;
+    const auto                                           indexed = itk::MeshExtraction::MakeIndexedTriangleMesh(*mesh);
+    for (const auto & corners : indexed.triangles)
+    {
+      std::array<QEMeshType::PointIdentifier, 3> t;
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        t[k] = indexed.pointIds[corners[k]];
+      }
+      if (std::any_of(t.begin(), t.end(), [&](QEMeshType::PointIdentifier p) {
+            return std::binary_search(around.begin(), around.end(), p);
+          }))
+      {
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        triangles.insert(t);
+      }
+    }
+    return triangles;
+  };
+  auto filter = SwapType::New();
+  filter->SetInput(input);
+  filter->SetLockedPoints(locked);
+  filter->Update();
+  const auto free = SwapType::New();
+  free->SetInput(input);
+  free->Update();
+  EXPECT_GT(filter->GetNumberOfSwaps(), 200u);
+  EXPECT_LT(filter->GetNumberOfSwaps(), free->GetNumberOfSwaps());
+  EXPECT_EQ(triangleSet(filter->GetOutput(), locked), triangleSet(input, locked));
+  EXPECT_NE(triangleSet(free->GetOutput(), locked), triangleSet(input, locked)); // the lock made the difference
+  EXPECT_TRUE(Analyze(filter->GetOutput()).IsValidClosedSurface());
+
+  filter->SetLockedPoints({});
+  filter->Update();
+  EXPECT_EQ(filter->GetNumberOfSwaps(), free->GetNumberOfSwaps());
 }
 
 TEST(EdgeSwapQuadEdgeMeshFilter, RegularitySwapsThenSmoothingReachAHigherQAreaThanSmoothingAlone)

@@ -366,6 +366,55 @@ TEST(ScaleSpaceEdgeDetection, GradientOfARampInPhysicalSpace)
 
 // --- the filter -----------------------------------------------------------------
 
+// A small closed component can turn inside out as a whole although every triangle
+// keeps its normal and none crosses another: here an icosahedron mirrored through its
+// centre (the same surface, each triangle now facing inward). Found on the head CT,
+// where one-voxel components collapsed through their centre during edge detection.
+TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresAComponentTurnedInsideOut)
+{
+  const Vec3              center = ME::MakeVec3(10.0, 10.0, 10.0);
+  ME::IndexedTriangleMesh mesh = ME::MakeGeodesicSphere(0, center, 2.0);
+  const std::size_t       n = mesh.points.size();
+  // A second, untouched component, and a third that only moves outward.
+  for (const double x : { 30.0, 50.0 })
+  {
+    const ME::IndexedTriangleMesh other = ME::MakeGeodesicSphere(1, ME::MakeVec3(x, 10.0, 10.0), 3.0);
+    const auto                    offset = static_cast<std::uint32_t>(mesh.points.size());
+    mesh.points.insert(mesh.points.end(), other.points.begin(), other.points.end());
+    for (auto t : other.triangles)
+    {
+      for (auto & v : t)
+      {
+        v += offset;
+      }
+      mesh.triangles.push_back(t);
+    }
+  }
+  const ME::MeshTopology  topology = ME::BuildMeshTopology(mesh);
+  const std::vector<Vec3> start = mesh.points;
+  ASSERT_EQ(topology.numberOfComponents, 3u);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    mesh.points[i] = center * 2.0 - start[i]; // point reflection: orientation reversed
+  }
+  const Vec3 third = ME::MakeVec3(50.0, 10.0, 10.0);
+  for (std::size_t i = mesh.points.size() - (mesh.points.size() - n) / 2; i < mesh.points.size(); ++i)
+  {
+    mesh.points[i] = third + (start[i] - third) * 1.1;
+  }
+  const std::vector<Vec3> moved = mesh.points;
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    ASSERT_TRUE(ME::IsValidTriangleAgainstStart(mesh, start, f, 1e-6)) << f; // no triangle flips
+  }
+
+  EXPECT_EQ(ME::UndoFoldingMoves(mesh, topology, start, 1e-6), n);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+  {
+    EXPECT_EQ(mesh.points[i], i < n ? start[i] : moved[i]) << i;
+  }
+}
+
 TEST(ScaleSpaceEdgeDetectionMeshFilter, FindsTheChapter4Sphere)
 {
   const ImageType::Pointer      image = Chapter4SphereImage();
