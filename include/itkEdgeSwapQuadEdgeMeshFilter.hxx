@@ -88,8 +88,23 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
   auto IsLocked = [this](OutputPointIdentifier p) {
     return std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), p);
   };
+  // Valences and boundary flags once per pass (walking a point's edge ring through
+  // the quad-edge structure is slow), kept up to date as edges are swapped: a swap
+  // takes an edge from a and b and gives one to c and d; boundaries do not change.
+  auto *                points = mesh->GetPoints();
+  OutputPointIdentifier largestId = 0;
+  for (auto it = points->Begin(); it != points->End(); ++it)
+  {
+    largestId = std::max(largestId, it.Index());
+  }
+  std::vector<int>          valence(static_cast<std::size_t>(largestId) + 1, 0);
+  std::vector<std::uint8_t> onBoundary(static_cast<std::size_t>(largestId) + 1, 0);
+  for (auto it = points->Begin(); it != points->End(); ++it)
+  {
+    valence[it.Index()] = std::max(0, it.Value().GetValence());
+    onBoundary[it.Index()] = it.Value().IsInternal() ? 0 : 1;
+  }
   auto          flip = FlipEdgeFunctionType::New();
-  auto *        points = mesh->GetPoints();
   SizeValueType swaps = 0;
   for (const auto & ab : edges)
   {
@@ -116,14 +131,14 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
     quad.b = ToVec3(pb);
     quad.c = ToVec3(pc);
     quad.d = ToVec3(pd);
-    quad.valenceA = static_cast<unsigned int>(std::max(0, pa.GetValence()));
-    quad.valenceB = static_cast<unsigned int>(std::max(0, pb.GetValence()));
-    quad.valenceC = static_cast<unsigned int>(std::max(0, pc.GetValence()));
-    quad.valenceD = static_cast<unsigned int>(std::max(0, pd.GetValence()));
-    quad.boundaryA = !pa.IsInternal();
-    quad.boundaryB = !pb.IsInternal();
-    quad.boundaryC = !pc.IsInternal();
-    quad.boundaryD = !pd.IsInternal();
+    quad.valenceA = static_cast<unsigned int>(valence[a]);
+    quad.valenceB = static_cast<unsigned int>(valence[b]);
+    quad.valenceC = static_cast<unsigned int>(valence[c]);
+    quad.valenceD = static_cast<unsigned int>(valence[d]);
+    quad.boundaryA = onBoundary[a] != 0;
+    quad.boundaryB = onBoundary[b] != 0;
+    quad.boundaryC = onBoundary[c] != 0;
+    quad.boundaryD = onBoundary[d] != 0;
     quad.sameApex = c == d;
     quad.oppositeEdgeExists = !quad.sameApex && mesh->FindEdge(c, d) != nullptr;
 
@@ -153,6 +168,10 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
       itkExceptionMacro(<< "QuadEdgeMeshEulerOperatorFlipEdgeFunction turned edge (" << a << ", " << b << ") into ("
                         << o << ", " << t << ") instead of (" << c << ", " << d << ")");
     }
+    --valence[a];
+    --valence[b];
+    ++valence[c];
+    ++valence[d];
     ++swaps;
   }
   return swaps;
