@@ -58,8 +58,10 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
     }
   }
   // Order the slots along a Morton (Z-order) curve of the box centres, then split
-  // every range in the middle: spatially coherent halves without any comparison
-  // sort per level (the build is O(n log n) in one std::sort of 64-bit keys).
+  // every range where the highest differing bit of its codes changes (Karras' linear
+  // BVH): each half is one octree cell, so boxes stay tight (splitting in the middle
+  // of the range instead lets a node span two distant cells, and made nearest-point
+  // queries three times slower). One std::sort of 64-bit keys, O(n log n).
   AxisAlignedBox centreBounds;
   for (const auto & c : centroids)
   {
@@ -100,11 +102,12 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
     std::uint32_t node;
     std::uint32_t begin;
     std::uint32_t end;
+    std::uint32_t depth;
   };
   m_Nodes.reserve(2 * (n / LeafSize + 1));
   m_Nodes.emplace_back();
   std::vector<Task> tasks;
-  tasks.push_back({ 0, 0, static_cast<std::uint32_t>(n) });
+  tasks.push_back({ 0, 0, static_cast<std::uint32_t>(n), 0 });
   while (!tasks.empty())
   {
     const Task task = tasks.back();
@@ -116,14 +119,34 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
       m_Nodes[task.node].count = count;
       continue;
     }
-    const std::uint32_t middle = task.begin + count / 2;
-    const auto          left = static_cast<std::uint32_t>(m_Nodes.size());
+    std::uint32_t       middle = task.begin + count / 2;
+    const std::uint64_t firstCode = keys[task.begin].first;
+    const std::uint64_t lastCode = keys[task.end - 1].first;
+    // Past depth 48 (or among equal codes) split in the middle: the depth, and so the
+    // traversal stacks of the queries, stay below 48 + log2(n) < 128.
+    if (firstCode != lastCode && task.depth < 48)
+    {
+      const std::uint64_t differ = firstCode ^ lastCode;
+      unsigned int        bit = 63;
+      while (((differ >> bit) & 1u) == 0)
+      {
+        --bit;
+      }
+      // The codes of the range share the bits above `bit`, and are sorted: those
+      // with `bit` clear come first.
+      const auto split = std::partition_point(
+        keys.begin() + task.begin, keys.begin() + task.end, [bit](const std::pair<std::uint64_t, std::uint32_t> & k) {
+          return ((k.first >> bit) & 1u) == 0;
+        });
+      middle = static_cast<std::uint32_t>(split - keys.begin());
+    }
+    const auto left = static_cast<std::uint32_t>(m_Nodes.size());
     m_Nodes.emplace_back();
     m_Nodes.emplace_back();
     m_Nodes[task.node].first = left;
     m_Nodes[task.node].count = 0;
-    tasks.push_back({ left, task.begin, middle });
-    tasks.push_back({ left + 1, middle, task.end });
+    tasks.push_back({ left, task.begin, middle, task.depth + 1 });
+    tasks.push_back({ left + 1, middle, task.end, task.depth + 1 });
   }
   // Boxes bottom-up: children always come after their parent.
   for (std::size_t k = m_Nodes.size(); k-- > 0;)
