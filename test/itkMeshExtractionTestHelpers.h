@@ -18,6 +18,7 @@
 #ifndef itkMeshExtractionTestHelpers_h
 #define itkMeshExtractionTestHelpers_h
 
+#include "itkMeshExtractionGeodesicSphere.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMesh.h"
 #include "itkQuadEdgeMesh.h"
@@ -40,57 +41,12 @@ using QEMeshTraitsD = itk::QuadEdgeMeshTraits<double, 3, bool, bool, double, dou
 using QEMeshDType = itk::QuadEdgeMesh<double, 3, QEMeshTraitsD>;
 
 /** Icosahedron subdivided `level` times, vertices projected on the sphere
- * (center, radius); outward counter-clockwise triangles. */
+ * (center, radius); outward counter-clockwise triangles (the module's
+ * MakeGeodesicSphere). */
 inline IndexedTriangleMesh
 MakeIcosphere(unsigned int level, double radius = 1.0, const Vec3 & center = MakeVec3(0, 0, 0))
 {
-  IndexedTriangleMesh m;
-  const double        t = (1.0 + std::sqrt(5.0)) / 2.0;
-  const double base[12][3] = { { -1, t, 0 },  { 1, t, 0 },  { -1, -t, 0 }, { 1, -t, 0 }, { 0, -1, t },  { 0, 1, t },
-                               { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 },  { t, 0, 1 },  { -t, 0, -1 }, { -t, 0, 1 } };
-  for (const auto & b : base)
-  {
-    Vec3 v = MakeVec3(b[0], b[1], b[2]);
-    m.points.push_back(v * (1.0 / itk::MeshExtraction::Norm(v)));
-  }
-  m.triangles = { { 0, 11, 5 },  { 0, 5, 1 },  { 0, 1, 7 },  { 0, 7, 10 }, { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 },
-                  { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },  { 3, 9, 4 },  { 3, 4, 2 },   { 3, 2, 6 }, { 3, 6, 8 },
-                  { 3, 8, 9 },   { 4, 9, 5 },  { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 },   { 9, 8, 1 } };
-  for (unsigned int l = 0; l < level; ++l)
-  {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
-    auto                                                             midpoint = [&](std::uint32_t a, std::uint32_t b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      const auto found = midpoints.find(key);
-      if (found != midpoints.end())
-      {
-        return found->second;
-      }
-      Vec3 v = (m.points[a] + m.points[b]) * 0.5;
-      v *= 1.0 / itk::MeshExtraction::Norm(v);
-      m.points.push_back(v);
-      const auto index = static_cast<std::uint32_t>(m.points.size() - 1);
-      midpoints[key] = index;
-      return index;
-    };
-    std::vector<itk::MeshExtraction::TriangleIndices> next;
-    for (const auto & tri : m.triangles)
-    {
-      const std::uint32_t ab = midpoint(tri[0], tri[1]);
-      const std::uint32_t bc = midpoint(tri[1], tri[2]);
-      const std::uint32_t ca = midpoint(tri[2], tri[0]);
-      next.push_back({ tri[0], ab, ca });
-      next.push_back({ tri[1], bc, ab });
-      next.push_back({ tri[2], ca, bc });
-      next.push_back({ ab, bc, ca });
-    }
-    m.triangles.swap(next);
-  }
-  for (auto & p : m.points)
-  {
-    p = center + p * radius;
-  }
-  return m;
+  return itk::MeshExtraction::MakeGeodesicSphere(level, center, radius);
 }
 
 /** Torus (major radius R about the z axis, minor radius r), nu x nv quads split

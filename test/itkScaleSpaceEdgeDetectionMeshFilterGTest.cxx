@@ -25,6 +25,8 @@
 #include "itkImageRegionIteratorWithIndex.h"
 #include "itkQuadEdgeMesh.h"
 
+#include "itkMeshExtractionScaleSpaceTestHelpers.h"
+
 #include "itkGTest.h"
 
 #include <chrono>
@@ -43,68 +45,31 @@ using FilterType = itk::ScaleSpaceEdgeDetectionMeshFilter<MeshType, ImageType>;
 using ScaleSpaceType = ME::GaussianGradientMagnitudeScaleSpace<ImageType>;
 using Direction = itk::MeshExtractionEnums::EdgeSearchDirection;
 
-MeshType::Pointer
-ToMesh(const ME::IndexedTriangleMesh & m)
-{
-  auto mesh = MeshType::New();
-  ME::FillMesh(m, *mesh);
-  return mesh;
-}
+using MeshExtractionScaleSpaceTest::Chapter4SphereCenter;
+using MeshExtractionScaleSpaceTest::Chapter4SphereImage;
+using MeshExtractionScaleSpaceTest::InitialSphere;
+using MeshExtractionScaleSpaceTest::ToMesh;
 
-/** The sphere of thesis section 4.3: 100^3 voxels of 1 mm, radius 25 mm, a step
- * 0 -> 100 blurred by 1 mm, optional noise. */
-ImageType::Pointer
-Chapter4SphereImage(double noise = 0.0)
-{
-  const auto shape = ME::PhantomShape::Chapter4Sphere;
-  auto       parameters = ME::DefaultPhantomImageParameters(shape);
-  parameters.noiseStandardDeviation = noise;
-  parameters.noiseSeed = 11;
-  auto source = ME::MakePhantomImageSource<ImageType>(shape, ME::DefaultPhantomGrid(shape), parameters);
-  source->Update();
-  return source->GetOutput();
-}
+/** A smaller sphere for the tests that need no Table 4.1 numbers: 40^3 voxels of
+ * 1 mm, the initial mesh of mean radius 9.8 mm. */
+constexpr unsigned int SmallSize = 40;
 
-Vec3
-Chapter4SphereCenter()
-{
-  const auto c = ME::PhantomGridCenter(ME::DefaultPhantomGrid(ME::PhantomShape::Chapter4Sphere));
-  return ME::MakeVec3(c[0], c[1], c[2]);
-}
-
-/** A smaller version for the tests that need no Table 4.1 numbers: 40^3 voxels of
- * 1 mm, radius 10 mm. */
 ME::PhantomGrid
 SmallSphereGrid()
 {
-  ME::PhantomGrid grid;
-  grid.size.Fill(40);
-  return grid;
+  return MeshExtractionScaleSpaceTest::SmallSphereGrid(SmallSize);
 }
 
 ImageType::Pointer
 SmallSphereImage(double noise = 0.0)
 {
-  auto parameters = ME::DefaultPhantomImageParameters(ME::PhantomShape::Chapter4Sphere);
-  parameters.noiseStandardDeviation = noise;
-  parameters.noiseSeed = 11;
-  auto source = ME::MakePhantomImageSource<ImageType>(ME::PhantomShape::Chapter4Sphere, SmallSphereGrid(), parameters);
-  source->Update();
-  return source->GetOutput();
+  return MeshExtractionScaleSpaceTest::SphereImage(SmallSphereGrid(), noise);
 }
 
 ME::IndexedTriangleMesh
 SmallInitialSphere()
 {
-  const auto c = ME::PhantomGridCenter(SmallSphereGrid());
-  return ME::MakePerturbedGeodesicSphere(3, ME::MakeVec3(c[0], c[1], c[2]), 9.8, 0.2, 0.53, 100);
-}
-
-/** An initial mesh like the thesis': 642 vertices, mean radius 24.78, variance 0.471. */
-ME::IndexedTriangleMesh
-InitialSphere()
-{
-  return ME::MakePerturbedGeodesicSphere(3, Chapter4SphereCenter(), 24.78, 0.471, 0.53, 100);
+  return MeshExtractionScaleSpaceTest::SmallInitialSphere(SmallSize, 9.8);
 }
 
 /** Mean and population variance of the distances of the points from `center`. */

@@ -24,6 +24,8 @@
 #include "itkEuler3DTransform.h"
 #include "itkQuadEdgeMesh.h"
 
+#include "itkMeshExtractionScaleSpaceTestHelpers.h"
+
 #include "itkGTest.h"
 
 #include <functional>
@@ -38,69 +40,31 @@ using ImageType = itk::Image<float, 3>;
 using FilterType = itk::ScaleSpaceEdgeMeshRefinementFilter<MeshType, ImageType>;
 using Operation = itk::MeshExtractionEnums::RefinementOperation;
 
-MeshType::Pointer
-ToMesh(const ME::IndexedTriangleMesh & m)
-{
-  auto mesh = MeshType::New();
-  ME::FillMesh(m, *mesh);
-  return mesh;
-}
-
-ImageType::Pointer
-Chapter4SphereImage(double noise)
-{
-  const auto shape = ME::PhantomShape::Chapter4Sphere;
-  auto       parameters = ME::DefaultPhantomImageParameters(shape);
-  parameters.noiseStandardDeviation = noise;
-  parameters.noiseSeed = 11;
-  auto source = ME::MakePhantomImageSource<ImageType>(shape, ME::DefaultPhantomGrid(shape), parameters);
-  source->Update();
-  return source->GetOutput();
-}
-
-Vec3
-Chapter4SphereCenter()
-{
-  const auto c = ME::PhantomGridCenter(ME::DefaultPhantomGrid(ME::PhantomShape::Chapter4Sphere));
-  return ME::MakeVec3(c[0], c[1], c[2]);
-}
-
-/** Like the initial mesh of thesis Table 4.1 (720 vertices, 1436 triangles, mean
- * radius 24.78, variance 0.471, mean q_area 0.76, mean minimum angle 35.4): a
- * geodesic sphere of 642 vertices and 1280 triangles with 100 random edge flips,
- * tangential jitter and radial noise, mean radius 24.78, variance 0.471. */
-ME::IndexedTriangleMesh
-InitialSphere()
-{
-  return ME::MakePerturbedGeodesicSphere(3, Chapter4SphereCenter(), 24.78, 0.471, 0.53, 100);
-}
+using MeshExtractionScaleSpaceTest::Chapter4SphereCenter;
+using MeshExtractionScaleSpaceTest::Chapter4SphereImage;
+using MeshExtractionScaleSpaceTest::InitialSphere;
+using MeshExtractionScaleSpaceTest::ToMesh;
 
 /** A smaller sphere for the tests that need no Table 4.1 numbers: 48^3 voxels of
- * 1 mm, radius 12 mm, the initial mesh 0.2 mm inside with variance 0.2. */
+ * 1 mm, the initial mesh of mean radius 11.8 mm. */
+constexpr unsigned int SmallSize = 48;
+
 ME::PhantomGrid
 SmallSphereGrid()
 {
-  ME::PhantomGrid grid;
-  grid.size.Fill(48);
-  return grid;
+  return MeshExtractionScaleSpaceTest::SmallSphereGrid(SmallSize);
 }
 
 ImageType::Pointer
-SmallSphereImage(double noise)
+SmallSphereImage(double noise = 0.0)
 {
-  auto parameters = ME::DefaultPhantomImageParameters(ME::PhantomShape::Chapter4Sphere);
-  parameters.noiseStandardDeviation = noise;
-  parameters.noiseSeed = 11;
-  auto source = ME::MakePhantomImageSource<ImageType>(ME::PhantomShape::Chapter4Sphere, SmallSphereGrid(), parameters);
-  source->Update();
-  return source->GetOutput();
+  return MeshExtractionScaleSpaceTest::SphereImage(SmallSphereGrid(), noise);
 }
 
 ME::IndexedTriangleMesh
 SmallInitialSphere()
 {
-  const auto c = ME::PhantomGridCenter(SmallSphereGrid());
-  return ME::MakePerturbedGeodesicSphere(3, ME::MakeVec3(c[0], c[1], c[2]), 11.8, 0.2, 0.53, 100);
+  return MeshExtractionScaleSpaceTest::SmallInitialSphere(SmallSize, 11.8);
 }
 
 ME::TriangleMeshQualityReport
