@@ -38,6 +38,11 @@ if bash scripts/prepare-data.sh "$out/data"; then
   for m in fe fe-sinc; do [ -f "$out/cranium-methods/$m.vtk" ] && others+=("$out/cranium-methods/$m.vtk"); done
   "$me" report "$out/cranium" "$out/cranium-snert.vtk" "$out/cranium-high.vtk" "${others[@]}" \
     --title "Head CT (invesalius-examples, 256x256x108, 0.96x0.96x1.5 mm), bone at 300 HU" "${include[@]}"
+  if [ -f "$out/data/headsq.nhdr" ] && [ -x "$compare" ]; then
+    log "small head CT (../shared/data/ct_headsq): bone at 1150 (HU + 1024)"
+    "$compare" "$out/data/headsq.nhdr" --iso 1150 --methods all --repeat 1 --markdown "$out/comparison-headsq.md" \
+      --csv "$out/comparison-headsq.csv" > "$out/comparison-headsq.txt"
+  fi
 fi
 
 # 3. Scale-space edge refinement (thesis ch. 4): the chapter-4 sphere (100^3, radius 25,

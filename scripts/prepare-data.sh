@@ -35,3 +35,14 @@ endian: little
 data file: cranium.raw
 NRRD
 echo "prepare-data: $dir/cranium.nhdr"
+
+# The small head CT of ../shared/data/ct_headsq, when that folder is next to the project
+# (it is not part of it): its header gives both 'space:' and 'spacings:', which ITK's NRRD
+# reader refuses ("Error interpreting nrrd spacing"), so write a copy without the space
+# line that points at the raw file where it is.
+shared=${MESHEXTRACTION_SHARED_DATA:-$(cd "$(dirname "$0")/.." && pwd)/../shared/data}
+if [ -f "$shared/ct_headsq/headsq_quarter.nhdr" ]; then
+  raw=$(cd "$shared/ct_headsq" && pwd)/headsq_quarter.raw
+  grep -v '^space:' "$shared/ct_headsq/headsq_quarter.nhdr" | sed "s|^data file: .*|data file: $raw|" > "$dir/headsq.nhdr"
+  echo "prepare-data: $dir/headsq.nhdr"
+fi
