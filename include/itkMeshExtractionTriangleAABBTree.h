@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace itk
@@ -62,6 +63,11 @@ struct AxisAlignedBox
   {
     return lower[0] <= b.upper[0] && b.lower[0] <= upper[0] && lower[1] <= b.upper[1] && b.lower[1] <= upper[1] &&
            lower[2] <= b.upper[2] && b.lower[2] <= upper[2];
+  }
+  double
+  HalfPerimeter() const
+  {
+    return (upper[0] - lower[0]) + (upper[1] - lower[1]) + (upper[2] - lower[2]);
   }
   double
   SquaredDistance(const Vec3 & p) const
@@ -197,6 +203,93 @@ public:
     }
   }
 
+  /** A pair of nodes whose overlapping primitives are still to be visited (see
+   * SplitOverlappingPairs and VisitOverlappingPairs). */
+  using NodePair = std::pair<std::uint32_t, std::uint32_t>;
+
+  /** The start of a simultaneous traversal of the tree against itself: node pairs
+   * that together cover every pair of primitives with overlapping boxes exactly once,
+   * split breadth-first until there are at least `minimumNumberOfPairs` (or nothing is
+   * left to split), so that VisitOverlappingPairs can work on them in parallel. */
+  std::vector<NodePair>
+  SplitOverlappingPairs(std::size_t minimumNumberOfPairs) const
+  {
+    std::vector<NodePair> pairs;
+    if (m_Nodes.empty())
+    {
+      return pairs;
+    }
+    pairs.emplace_back(0, 0);
+    for (;;)
+    {
+      std::vector<NodePair> next;
+      bool                  split = false;
+      for (const auto & p : pairs)
+      {
+        split = this->SplitPair(p, next) || split;
+      }
+      pairs.swap(next);
+      if (!split || pairs.size() >= minimumNumberOfPairs)
+      {
+        return pairs;
+      }
+    }
+  }
+
+  /** Calls visit(a, b), a != b triangles, once for every unordered pair of primitives
+   * under the node pair whose boxes overlap. */
+  template <typename TVisitor>
+  void
+  VisitOverlappingPairs(const NodePair & start, TVisitor && visit) const
+  {
+    std::vector<NodePair> stack{ start };
+    std::vector<NodePair> children;
+    while (!stack.empty())
+    {
+      const NodePair p = stack.back();
+      stack.pop_back();
+      const Node & a = m_Nodes[p.first];
+      const Node & b = m_Nodes[p.second];
+      if (a.count > 0 && b.count > 0)
+      {
+        if (p.first == p.second)
+        {
+          for (std::uint32_t i = a.first; i < a.first + a.count; ++i)
+          {
+            for (std::uint32_t j = i + 1; j < a.first + a.count; ++j)
+            {
+              if (m_Boxes[i].Overlaps(m_Boxes[j]))
+              {
+                visit(m_Triangles[i], m_Triangles[j]);
+              }
+            }
+          }
+        }
+        else
+        {
+          for (std::uint32_t i = a.first; i < a.first + a.count; ++i)
+          {
+            if (!m_Boxes[i].Overlaps(b.box))
+            {
+              continue;
+            }
+            for (std::uint32_t j = b.first; j < b.first + b.count; ++j)
+            {
+              if (m_Boxes[i].Overlaps(m_Boxes[j]))
+              {
+                visit(m_Triangles[i], m_Triangles[j]);
+              }
+            }
+          }
+        }
+        continue;
+      }
+      children.clear();
+      this->SplitPair(p, children);
+      stack.insert(stack.end(), children.begin(), children.end());
+    }
+  }
+
   /** Calls visit(triangle) for every triangle whose box the ray origin + t d,
    * t >= 0, enters. */
   template <typename TVisitor>
@@ -242,6 +335,54 @@ public:
   }
 
 private:
+  /** Appends what replaces the node pair p in the traversal: p itself if both are
+   * leaves (returns false), nothing if their boxes are apart, else the pairs of
+   * children (a node against itself: its two children against themselves and each
+   * other). */
+  bool
+  SplitPair(const NodePair & p, std::vector<NodePair> & out) const
+  {
+    const Node & a = m_Nodes[p.first];
+    const Node & b = m_Nodes[p.second];
+    if (p.first == p.second)
+    {
+      if (a.count > 0)
+      {
+        out.push_back(p);
+        return false;
+      }
+      out.emplace_back(a.first, a.first);
+      out.emplace_back(a.first + 1, a.first + 1);
+      if (m_Nodes[a.first].box.Overlaps(m_Nodes[a.first + 1].box))
+      {
+        out.emplace_back(a.first, a.first + 1);
+      }
+      return true;
+    }
+    if (!a.box.Overlaps(b.box))
+    {
+      return true;
+    }
+    if (a.count > 0 && b.count > 0)
+    {
+      out.push_back(p);
+      return false;
+    }
+    // Split the inner node with the larger box (or the only inner one).
+    const bool splitA = b.count > 0 || (a.count == 0 && a.box.HalfPerimeter() >= b.box.HalfPerimeter());
+    if (splitA)
+    {
+      out.emplace_back(a.first, p.second);
+      out.emplace_back(a.first + 1, p.second);
+    }
+    else
+    {
+      out.emplace_back(p.first, b.first);
+      out.emplace_back(p.first, b.first + 1);
+    }
+    return true;
+  }
+
   struct Node
   {
     AxisAlignedBox box;

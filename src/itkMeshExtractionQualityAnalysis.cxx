@@ -202,6 +202,39 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   }
   TriangleAABBTree tree;
   tree.Build(mesh, &valid);
+  if (queries == nullptr)
+  {
+    // All pairs: the tree against itself, each pair of overlapping boxes once, the
+    // node pairs of the first levels shared among the threads.
+    const std::vector<TriangleAABBTree::NodePair>                     starts = tree.SplitOverlappingPairs(4096);
+    constexpr std::size_t                                             PairsPerBlock = 16;
+    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((starts.size() + PairsPerBlock - 1) /
+                                                                            PairsPerBlock);
+    ParallelForBlocks(starts.size(), PairsPerBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
+          const auto &         t = mesh.triangles[f];
+          const auto &         s = mesh.triangles[g];
+          const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+          const Vec3           Q[3] = { mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]] };
+          const IdentifierType pid[3] = { t[0], t[1], t[2] };
+          const IdentifierType qid[3] = { s[0], s[1], s[2] };
+          if (FacesIntersect(P, pid, Q, qid))
+          {
+            found[block].emplace_back(std::min(f, g), std::max(f, g));
+          }
+        });
+      }
+    });
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (auto & blockPairs : found)
+    {
+      pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
+    }
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  }
   std::vector<std::uint32_t> asked;
   if (queries != nullptr)
   {
