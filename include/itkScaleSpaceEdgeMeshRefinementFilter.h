@@ -40,7 +40,10 @@ namespace itk
  * The protocol, each operation recorded as a row of GetSteps() (thesis Table 4.1):
  * 1. ED: one scale-space edge-detection step (ScaleSpaceEdgeDetectionMeshFilter's
  *    engine): every vertex moves to the edge within MaximumDeviation of it;
- * 2. ES: regularity edge swaps (EdgeSwapQuadEdgeMeshFilter, its defaults);
+ * 2. ES: regularity edge swaps with the decision and default parameters of
+ *    EdgeSwapQuadEdgeMeshFilter (on a closed 2-manifold surface through the indexed
+ *    swap engine of the high-quality SurfaceNets, MeshExtraction::SwapEdges, which is
+ *    much faster on large meshes; on other meshes through the filter itself);
  * 3. S: centroid smoothing steps S_C = 1/3 v + 2/3 S_L(v) (uniform, batch, with the
  *    no-inversion guard of LaplacianSmoothingQuadEdgeMeshFilter), repeated until a
  *    vertex has travelled farther than the capture range (MaximumDeviation) from its
@@ -74,10 +77,11 @@ namespace itk
  * time, so after each ED and S the moves that made the surface fold or cut through
  * itself, or turned a closed component inside out, are undone
  * (MeshExtraction::UndoFoldingMoves, exact intersection tests, signed volumes), and
- * after each ES whose new triangles intersect the surface, the corners of those
- * triangles are locked and the swaps are made again from the mesh before the ES (at
- * most five attempts, then the ES is dropped); the step table counts them with the
- * rejected moves.
+ * after each ES the swaps whose new triangles intersect the surface or fold against
+ * a neighbour are undone and not tried again (closed surfaces), or the corners of
+ * those triangles are locked and the swaps made again from the mesh before the ES (at
+ * most five attempts, then the ES is dropped; other meshes); the step table counts
+ * them with the rejected moves.
  *
  * The output has the input's point identifiers; faces are re-created by the swaps.
  * The input must be a triangle mesh inside the image; a missing image, an empty mesh,
@@ -201,6 +205,12 @@ protected:
   EdgeDetection(unsigned int cycle);
   void
   EdgeSwap(unsigned int cycle);
+  /** ES on a closed 2-manifold: the indexed swap engine (fast). */
+  void
+  ClosedSurfaceEdgeSwap(unsigned int cycle);
+  /** ES on any other mesh: EdgeSwapQuadEdgeMeshFilter, cutting swaps redone with locked points. */
+  void
+  QuadEdgeEdgeSwap(unsigned int cycle);
   /** Returns the travel since the last ED. */
   double
   Smoothing(unsigned int cycle, SmootherType & smoother);

@@ -20,6 +20,7 @@
 
 #include "itkScaleSpaceEdgeMeshRefinementFilter.h"
 #include "itkMeshExtractionDistanceAnalysis.h"
+#include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkTriangleMeshQualityCalculator.h"
 #include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
 
@@ -157,6 +158,79 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::EdgeDetecti
 template <typename TInputMesh, typename TImage, typename TOutputMesh>
 void
 ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::EdgeSwap(unsigned int cycle)
+{
+  if (m_Topology.numberOfBoundaryEdges == 0 && m_Topology.numberOfNonManifoldEdges == 0 &&
+      m_Topology.numberOfInconsistentEdges == 0 && m_Topology.numberOfNonManifoldVertices == 0)
+  {
+    this->ClosedSurfaceEdgeSwap(cycle);
+    return;
+  }
+  this->QuadEdgeEdgeSwap(cycle);
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+void
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::ClosedSurfaceEdgeSwap(unsigned int cycle)
+{
+  // The swap engine of the high-quality SurfaceNets (MeshExtraction::SwapEdges, the
+  // decision of EdgeSwapQuadEdgeMeshFilter with its default parameters) on an indexed
+  // copy: sweeps until none swaps (at most 20, the filter's default), each followed by
+  // undoing the swaps whose triangles cut through the surface or fold against a
+  // neighbour (MeshExtraction::UndoIntersectingSwaps; those edges are not tried again).
+  const auto                                start = std::chrono::steady_clock::now();
+  const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*m_Working);
+  MeshExtraction::SurfaceNetTriangles       surface;
+  surface.triangles = indexed.triangles;
+  surface.BuildConnectivity(indexed.points.size());
+  const MeshExtraction::EdgeSwapParameters parameters;
+  std::vector<std::uint64_t>               refused;
+  std::int64_t                             kept = 0;
+  std::int64_t                             undone = 0;
+  for (unsigned int sweep = 0; sweep < 20; ++sweep)
+  {
+    std::vector<MeshExtraction::EdgeSwapRecord> swaps =
+      MeshExtraction::SwapEdges(indexed.points, surface, parameters, &refused);
+    if (swaps.empty())
+    {
+      break;
+    }
+    undone +=
+      static_cast<std::int64_t>(MeshExtraction::UndoIntersectingSwaps(indexed.points, surface, swaps, &refused));
+    kept += static_cast<std::int64_t>(swaps.size());
+  }
+
+  auto         rebuilt = OutputMeshType::New();
+  const auto * points = m_Working->GetPoints();
+  for (auto it = points->Begin(); it != points->End(); ++it)
+  {
+    typename OutputMeshType::PointType p; // coordinates only: a quad-edge point also holds its old edge
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      p[d] = it.Value()[d];
+    }
+    rebuilt->SetPoint(it.Index(), p);
+  }
+  for (std::size_t f = 0; f < surface.triangles.size(); ++f)
+  {
+    const auto & t = surface.triangles[f];
+    if (rebuilt->AddFaceTriangle(indexed.pointIds[t[0]], indexed.pointIds[t[1]], indexed.pointIds[t[2]]) == nullptr)
+    {
+      itkExceptionMacro(<< "Internal error: the QuadEdgeMesh refused triangle " << f << " after the edge swaps");
+    }
+  }
+  m_Working = rebuilt;
+  const MeshExtraction::IndexedTriangleMesh swapped = MeshExtraction::MakeIndexedTriangleMesh(*m_Working);
+  m_Triangles = swapped.triangles;
+  m_Topology = MeshExtraction::BuildMeshTopology(swapped);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  StepType &   step = this->Record(OperationEnum::EdgeSwap, cycle, seconds, nullptr);
+  step.changes = kept;
+  step.rejectedMoves = undone;
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+void
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::QuadEdgeEdgeSwap(unsigned int cycle)
 {
   using Edge = std::pair<std::uint32_t, std::uint32_t>;
   auto           key = [](std::uint32_t a, std::uint32_t b) { return a < b ? Edge(a, b) : Edge(b, a); };

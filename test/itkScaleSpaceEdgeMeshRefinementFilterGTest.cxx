@@ -275,6 +275,57 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, DeterministicWhateverTheNumberOfThreads
   }
 }
 
+// A closed surface goes through the indexed swap engine; a mesh with a hole through
+// EdgeSwapQuadEdgeMeshFilter (boundary vertices keep their place). Both stay valid.
+TEST(ScaleSpaceEdgeMeshRefinementFilter, OpenMeshesAreRefinedThroughTheQuadEdgeSwapFilter)
+{
+  ME::IndexedTriangleMesh sphere = SmallInitialSphere();
+  const auto              c = ME::PhantomGridCenter(SmallSphereGrid());
+  ME::IndexedTriangleMesh open;
+  open.points = sphere.points;
+  for (const auto & t : sphere.triangles)
+  {
+    bool cap = true;
+    for (const auto v : t)
+    {
+      cap = cap && sphere.points[v][2] > c[2] + 0.8 * 11.8;
+    }
+    if (!cap)
+    {
+      open.triangles.push_back(t);
+    }
+  }
+  ASSERT_LT(open.triangles.size(), sphere.triangles.size());
+  const auto before = Analyze(ToMesh(open));
+  ASSERT_EQ(before.boundaryLoops, 1);
+
+  auto filter = FilterType::New();
+  filter->SetInput(ToMesh(open));
+  filter->SetInputImage(SmallSphereImage(0.0));
+  filter->SetMaximumDeviation(2.0);
+  filter->SetMaximumNumberOfCycles(2);
+  filter->Update();
+  std::int64_t swaps = 0;
+  for (const auto & s : filter->GetSteps())
+  {
+    if (s.operation == Operation::EdgeSwap)
+    {
+      swaps += s.changes;
+    }
+    EXPECT_EQ(s.degenerateTriangles, 0);
+    EXPECT_EQ(s.nonManifold, 0);
+  }
+  EXPECT_GT(swaps, 0);
+  const auto after = Analyze(filter->GetOutput());
+  EXPECT_EQ(after.boundaryLoops, 1);
+  EXPECT_EQ(after.nonManifoldEdges, 0);
+  EXPECT_EQ(after.inconsistentlyOrientedEdges, 0);
+  EXPECT_EQ(after.degenerateTriangles, 0);
+  EXPECT_EQ(after.selfIntersectingPairs, 0);
+  EXPECT_EQ(after.numberOfTriangles, before.numberOfTriangles);
+  EXPECT_GT(after.qArea.mean, before.qArea.mean);
+}
+
 TEST(ScaleSpaceEdgeMeshRefinementFilter, StopsAtTheCycleLimitAndReportsIt)
 {
   auto filter = FilterType::New();
