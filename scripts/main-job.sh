@@ -38,6 +38,9 @@ if bash scripts/prepare-data.sh "$out/data"; then
   for m in fe fe-sinc; do [ -f "$out/cranium-methods/$m.vtk" ] && others+=("$out/cranium-methods/$m.vtk"); done
   "$me" report "$out/cranium" "$out/cranium-snert.vtk" "$out/cranium-high.vtk" "${others[@]}" \
     --title "Head CT (invesalius-examples, 256x256x108, 0.96x0.96x1.5 mm), bone at 300 HU" "${include[@]}"
+  log "head CT: scale-space refinement of the unrelaxed SurfaceNets bone surface (about 1.5 minutes)"
+  "$me" refine "$out/data/cranium.nhdr" "$out/cranium-refined.vtk" --initial surfacenets --iso 300 \
+    --max-deviation 2 --target-quality 0.9 --csv "$out/refine-cranium.csv" --report > "$out/refine-cranium.txt"
   if [ -f "$out/data/headsq.nhdr" ] && [ -x "$compare" ]; then
     log "small head CT (../shared/data/ct_headsq): bone at 1150 (HU + 1024)"
     "$compare" "$out/data/headsq.nhdr" --iso 1150 --methods all --repeat 1 --markdown "$out/comparison-headsq.md" \
