@@ -63,7 +63,7 @@ if [ -f "$templates/ch2.nii.gz" ] && [ -f "$templates/ch2bet.nii.gz" ]; then
   log "Colin27 T1 MRI: brain surface by scale-space refinement of a rough SurfaceNets mesh"
   "$me" extract "$templates/ch2bet.nii.gz" --iso 1 --relaxation sna "$out/brain-rough.vtk"
   "$me" refine "$templates/ch2.nii.gz" "$out/brain-rough.vtk" "$out/brain-refined.vtk" --largest-component \
-    --max-deviation 3 --target-quality 0.9 --csv "$out/refine-brain.csv" --report > "$out/refine-brain.txt"
+    --max-deviation 1.5 --target-quality 0.9 --csv "$out/refine-brain.csv" --report > "$out/refine-brain.txt"
   "$me" report "$out/brain" "$out/brain-rough.vtk" "$out/brain-refined.vtk" \
     --title "Colin27 T1 MRI (mricron-data, 181x217x181, 1 mm): brain surface, rough and refined"
 else
