@@ -20,10 +20,13 @@
 
 #include "itkMeshExtractionGeodesicSphere.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkImage.h"
 #include "itkMesh.h"
 #include "itkQuadEdgeMesh.h"
 
 #include <cmath>
+#include <fstream>
+#include <string>
 #include <map>
 #include <random>
 
@@ -119,6 +122,46 @@ ToITKMesh(const IndexedTriangleMesh & in)
   auto mesh = TMesh::New();
   itk::MeshExtraction::FillMesh(in, *mesh);
   return mesh;
+}
+
+
+/** The small VTK head CT of ../shared/data/ct_headsq (64 x 64 x 93 voxels of
+ * 3.2 x 3.2 x 1.5 mm, HU + 1024, bone above ~1150), read from its raw file: its NRRD
+ * header gives both 'space:' and 'spacings:', which ITK's NRRD reader refuses. That
+ * folder lies next to the project and is never part of it: returns null (and where
+ * it looked in `path`) when it is absent, so that tests can skip. */
+inline itk::Image<short, 3>::Pointer
+ReadSharedHeadCT(std::string & path)
+{
+  path = std::string(MESHEXTRACTION_SOURCE_DIR) + "/../shared/data/ct_headsq/headsq_quarter.raw";
+  std::ifstream file(path, std::ios::binary);
+  if (!file)
+  {
+    return nullptr;
+  }
+  using ImageType = itk::Image<short, 3>;
+  auto                image = ImageType::New();
+  ImageType::SizeType size;
+  size[0] = 64;
+  size[1] = 64;
+  size[2] = 93;
+  image->SetRegions(size);
+  image->Allocate();
+  const double spacing[3] = { 3.2, 3.2, 1.5 };
+  image->SetSpacing(spacing);
+  const std::size_t voxels = 64 * 64 * 93;
+  std::vector<char> bytes(2 * voxels);
+  if (!file.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+  {
+    itkGenericExceptionMacro(<< path << " is shorter than 64 x 64 x 93 voxels of 2 bytes");
+  }
+  short * buffer = image->GetBufferPointer();
+  for (std::size_t i = 0; i < voxels; ++i) // little endian, 15-bit values
+  {
+    buffer[i] = static_cast<short>(
+      (static_cast<unsigned char>(bytes[2 * i]) | (static_cast<unsigned char>(bytes[2 * i + 1]) << 8)) & 0x7fff);
+  }
+  return image;
 }
 
 } // namespace MeshExtractionTest

@@ -720,32 +720,13 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityIsIdenticalForOneAndManyThreads)
 // and 'spacings:', which ITK's NRRD reader refuses). Bone above 1150 (HU + 1024).
 TEST(SurfaceNetsImageToMeshFilter, RealHeadCTGivesValidSurfacesAndHighQualityBeatsSnert)
 {
-  const std::string raw = std::string(MESHEXTRACTION_SOURCE_DIR) + "/../shared/data/ct_headsq/headsq_quarter.raw";
-  std::ifstream     file(raw, std::ios::binary);
-  if (!file)
+  std::string where;
+  const auto  image = MeshExtractionTest::ReadSharedHeadCT(where);
+  if (image.IsNull())
   {
-    GTEST_SKIP() << "../shared/data/ct_headsq is not next to the project (" << raw << "): real-data test skipped";
+    GTEST_SKIP() << "../shared/data/ct_headsq is not next to the project (" << where << "): real-data test skipped";
   }
   using ShortImage = itk::Image<short, 3>;
-  auto                 image = ShortImage::New();
-  ShortImage::SizeType size;
-  size[0] = 64;
-  size[1] = 64;
-  size[2] = 93;
-  image->SetRegions(size);
-  image->Allocate();
-  const double spacing[3] = { 3.2, 3.2, 1.5 };
-  image->SetSpacing(spacing);
-  const std::size_t voxels = 64 * 64 * 93;
-  std::vector<char> bytes(2 * voxels);
-  ASSERT_TRUE(file.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
-    << raw << " is shorter than 64 x 64 x 93 voxels";
-  short * buffer = image->GetBufferPointer();
-  for (std::size_t i = 0; i < voxels; ++i) // little endian, 15-bit values
-  {
-    buffer[i] = static_cast<short>(
-      (static_cast<unsigned char>(bytes[2 * i]) | (static_cast<unsigned char>(bytes[2 * i + 1]) << 8)) & 0x7fff);
-  }
 
   auto snert = itk::SurfaceNetsImageToMeshFilter<ShortImage>::New();
   snert->SetInput(image);
