@@ -108,39 +108,84 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
         {
           const PixelType * row = buffer + (z * ny + y) * nx;
           std::uint8_t *    flags = s.flags.data() + y * nx;
+          // Branch-free passes the compiler vectorizes: the inside flags, then (floating
+          // point) whether the row has a NaN, then the first and last inside voxel and
+          // the statistics. A NaN voxel is never inside.
+          std::int64_t inRow = 0;
           for (std::int64_t x = 0; x < nx; ++x)
           {
-            const PixelType v = row[x];
-            if constexpr (std::is_floating_point<PixelType>::value)
+            const std::uint8_t in = inside(row[x]) ? 1 : 0;
+            flags[x] = in;
+            inRow += in;
+          }
+          if constexpr (std::is_floating_point<PixelType>::value)
+          {
+            int nan = 0;
+            for (std::int64_t x = 0; x < nx; ++x)
             {
-              if (std::isnan(v))
+              nan |= (row[x] != row[x]) ? 1 : 0;
+            }
+            if (nan)
+            {
+              for (std::int64_t x = 0; x < nx; ++x)
               {
-                if (!stats.foundNaN)
+                if (std::isnan(row[x]))
                 {
-                  stats.foundNaN = true;
-                  stats.nanVoxel[0] = x;
-                  stats.nanVoxel[1] = y;
-                  stats.nanVoxel[2] = z;
+                  if (!stats.foundNaN)
+                  {
+                    stats.foundNaN = true;
+                    stats.nanVoxel[0] = x;
+                    stats.nanVoxel[1] = y;
+                    stats.nanVoxel[2] = z;
+                  }
+                  inRow -= flags[x];
+                  flags[x] = 0;
                 }
-                continue;
               }
             }
-            const bool in = inside(v);
-            flags[x] = in ? 1 : 0;
-            if (in)
+          }
+          if (inRow > 0)
+          {
+            std::int64_t first = 0;
+            while (flags[first] == 0)
             {
-              if (s.first[y] < 0)
+              ++first;
+            }
+            std::int64_t last = nx - 1;
+            while (flags[last] == 0)
+            {
+              --last;
+            }
+            s.first[y] = first;
+            s.last[y] = last;
+          }
+          if (count)
+          {
+            // NaN compares false, so it changes neither extreme.
+            PixelType lowest = row[0];
+            PixelType highest = row[0];
+            for (std::int64_t x = 0; x < nx; ++x)
+            {
+              lowest = row[x] < lowest ? row[x] : lowest;
+              highest = row[x] > highest ? row[x] : highest;
+            }
+            if (!(lowest != lowest)) // a row that starts with NaN: fall back
+            {
+              stats.minimum = std::min(stats.minimum, static_cast<double>(lowest));
+              stats.maximum = std::max(stats.maximum, static_cast<double>(highest));
+            }
+            else
+            {
+              for (std::int64_t x = 0; x < nx; ++x)
               {
-                s.first[y] = x;
+                if (!(row[x] != row[x]))
+                {
+                  stats.minimum = std::min(stats.minimum, static_cast<double>(row[x]));
+                  stats.maximum = std::max(stats.maximum, static_cast<double>(row[x]));
+                }
               }
-              s.last[y] = x;
             }
-            if (count)
-            {
-              stats.minimum = std::min(stats.minimum, static_cast<double>(v));
-              stats.maximum = std::max(stats.maximum, static_cast<double>(v));
-              stats.insideVoxels += in ? 1 : 0;
-            }
+            stats.insideVoxels += static_cast<std::size_t>(inRow);
           }
         }
       };
