@@ -311,6 +311,44 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
     }
   }
   std::sort(probes.begin(), probes.end());
+  if (4 * probes.size() > n)
+  {
+    // Many probes (a sweep of swaps or moves over the whole mesh): the tree against
+    // itself visits each overlapping pair once, cheaper than one query per probe.
+    const std::vector<TriangleAABBTree::NodePair>                     starts = tree.SplitOverlappingPairs(4096);
+    constexpr std::size_t                                             PairsPerBlock = 16;
+    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((starts.size() + PairsPerBlock - 1) /
+                                                                            PairsPerBlock);
+    ParallelForBlocks(starts.size(), PairsPerBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
+          if (f >= n || g >= n || (!probed[f] && !probed[g]) || !TriangleBox(mesh, f).Overlaps(TriangleBox(mesh, g)) ||
+              (!probed[f] && !valid(f)) || (!probed[g] && !valid(g)))
+          {
+            return;
+          }
+          const auto &         t = mesh.triangles[f];
+          const auto &         u = mesh.triangles[g];
+          const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+          const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
+          const IdentifierType pid[3] = { t[0], t[1], t[2] };
+          const IdentifierType qid[3] = { u[0], u[1], u[2] };
+          if (FacesIntersect(P, pid, Q, qid))
+          {
+            found[block].emplace_back(std::min(f, g), std::max(f, g));
+          }
+        });
+      }
+    });
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (auto & blockPairs : found)
+    {
+      pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
+    }
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  }
   constexpr std::size_t                                             BlockSize = 2048;
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((probes.size() + BlockSize - 1) / BlockSize);
   ParallelForBlocks(probes.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
