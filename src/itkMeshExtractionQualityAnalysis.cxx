@@ -183,6 +183,57 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
   return result;
 }
 
+namespace
+{
+/** The pairs the threads found, in one sorted list. */
+std::vector<std::pair<std::uint32_t, std::uint32_t>>
+SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> & found)
+{
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const auto & blockPairs : found)
+  {
+    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+/** The pairs of triangles whose boxes overlap in `tree` (the tree against itself, each
+ * pair once, the first levels' node pairs shared among the threads), that `accept`
+ * lets through and that intersect (FacesIntersect), sorted. */
+template <typename TAccept>
+std::vector<std::pair<std::uint32_t, std::uint32_t>>
+IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAABBTree & tree, TAccept && accept)
+{
+  const std::vector<TriangleAABBTree::NodePair>                     starts = tree.SplitOverlappingPairs(4096);
+  constexpr std::size_t                                             PairsPerBlock = 16;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((starts.size() + PairsPerBlock - 1) /
+                                                                          PairsPerBlock);
+  ParallelForBlocks(starts.size(), PairsPerBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
+        if (!accept(f, g))
+        {
+          return;
+        }
+        const auto &         t = mesh.triangles[f];
+        const auto &         u = mesh.triangles[g];
+        const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+        const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
+        const IdentifierType pid[3] = { t[0], t[1], t[2] };
+        const IdentifierType qid[3] = { u[0], u[1], u[2] };
+        if (FacesIntersect(P, pid, Q, qid))
+        {
+          found[block].emplace_back(std::min(f, g), std::max(f, g));
+        }
+      });
+    }
+  });
+  return SortedPairs(found);
+}
+} // namespace
+
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries)
 {
@@ -204,36 +255,8 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   tree.Build(mesh, &valid);
   if (queries == nullptr)
   {
-    // All pairs: the tree against itself, each pair of overlapping boxes once, the
-    // node pairs of the first levels shared among the threads.
-    const std::vector<TriangleAABBTree::NodePair>                     starts = tree.SplitOverlappingPairs(4096);
-    constexpr std::size_t                                             PairsPerBlock = 16;
-    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((starts.size() + PairsPerBlock - 1) /
-                                                                            PairsPerBlock);
-    ParallelForBlocks(starts.size(), PairsPerBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
-          const auto &         t = mesh.triangles[f];
-          const auto &         s = mesh.triangles[g];
-          const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
-          const Vec3           Q[3] = { mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]] };
-          const IdentifierType pid[3] = { t[0], t[1], t[2] };
-          const IdentifierType qid[3] = { s[0], s[1], s[2] };
-          if (FacesIntersect(P, pid, Q, qid))
-          {
-            found[block].emplace_back(std::min(f, g), std::max(f, g));
-          }
-        });
-      }
-    });
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    for (auto & blockPairs : found)
-    {
-      pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
-    }
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
+    // All pairs: the tree against itself, each pair of overlapping boxes once.
+    return IntersectingOverlappingPairs(mesh, tree, [](std::uint32_t, std::uint32_t) { return true; });
   }
   std::vector<std::uint32_t> asked;
   if (queries != nullptr)
@@ -280,13 +303,7 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
       });
     }
   });
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (auto & blockPairs : found)
-  {
-    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
-  }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  return SortedPairs(found);
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
@@ -315,39 +332,10 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
   {
     // Many probes (a sweep of swaps or moves over the whole mesh): the tree against
     // itself visits each overlapping pair once, cheaper than one query per probe.
-    const std::vector<TriangleAABBTree::NodePair>                     starts = tree.SplitOverlappingPairs(4096);
-    constexpr std::size_t                                             PairsPerBlock = 16;
-    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((starts.size() + PairsPerBlock - 1) /
-                                                                            PairsPerBlock);
-    ParallelForBlocks(starts.size(), PairsPerBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
-          if (f >= n || g >= n || (!probed[f] && !probed[g]) || !TriangleBox(mesh, f).Overlaps(TriangleBox(mesh, g)) ||
-              (!probed[f] && !valid(f)) || (!probed[g] && !valid(g)))
-          {
-            return;
-          }
-          const auto &         t = mesh.triangles[f];
-          const auto &         u = mesh.triangles[g];
-          const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
-          const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
-          const IdentifierType pid[3] = { t[0], t[1], t[2] };
-          const IdentifierType qid[3] = { u[0], u[1], u[2] };
-          if (FacesIntersect(P, pid, Q, qid))
-          {
-            found[block].emplace_back(std::min(f, g), std::max(f, g));
-          }
-        });
-      }
+    return IntersectingOverlappingPairs(mesh, tree, [&](std::uint32_t f, std::uint32_t g) {
+      return f < n && g < n && (probed[f] || probed[g]) && TriangleBox(mesh, f).Overlaps(TriangleBox(mesh, g)) &&
+             (probed[f] || valid(f)) && (probed[g] || valid(g));
     });
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    for (auto & blockPairs : found)
-    {
-      pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
-    }
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
   }
   constexpr std::size_t                                             BlockSize = 2048;
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((probes.size() + BlockSize - 1) / BlockSize);
@@ -377,13 +365,7 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
       });
     }
   });
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (auto & blockPairs : found)
-  {
-    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
-  }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  return SortedPairs(found);
 }
 
 TriangleMeshQualityReport
