@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <unordered_map>
+#include <string>
 #include <vector>
 
 namespace itk
@@ -126,6 +127,21 @@ public:
       }
     }
     return false;
+  }
+
+  /** Empty if every face of `mesh` is a triangle, else the message that names the
+   * first face that is not (the filters' clear error for non-triangle input). */
+  static std::string
+  DescribeNonTriangleFace(const MeshType & mesh)
+  {
+    CellIdentifier cell = 0;
+    unsigned int   numberOfPoints = 0;
+    if (!FindNonTriangleFace(mesh, cell, numberOfPoints))
+    {
+      return std::string();
+    }
+    return "The input must be a triangle mesh, but face " + std::to_string(cell) + " has " +
+           std::to_string(numberOfPoints) + " points";
   }
 
   /** Collects the movable vertices of `mesh` and their 1-rings. The mesh must stay

@@ -362,12 +362,10 @@ public:
     {
       return "The input mesh is empty: it has no points";
     }
-    typename MeshType::CellIdentifier cell = 0;
-    unsigned int                      numberOfPoints = 0;
-    if (QuadEdgeMeshVertexSmoother<MeshType>::FindNonTriangleFace(*mesh, cell, numberOfPoints))
+    const std::string nonTriangle = QuadEdgeMeshVertexSmoother<MeshType>::DescribeNonTriangleFace(*mesh);
+    if (!nonTriangle.empty())
     {
-      s << "The input must be a triangle mesh, but face " << cell << " has " << numberOfPoints << " points";
-      return s.str();
+      return nonTriangle;
     }
     std::size_t triangles = 0;
     if (mesh->GetCells() != nullptr)

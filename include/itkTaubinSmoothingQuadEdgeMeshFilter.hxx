@@ -92,12 +92,11 @@ TaubinSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
     itkExceptionMacro(<< "No input mesh: call SetInput() before Update()");
   }
   this->VerifyParameters();
-  typename InputMeshType::CellIdentifier cell = 0;
-  unsigned int                           numberOfPoints = 0;
-  if (MeshExtraction::QuadEdgeMeshVertexSmoother<InputMeshType>::FindNonTriangleFace(*input, cell, numberOfPoints))
+  const std::string nonTriangle =
+    MeshExtraction::QuadEdgeMeshVertexSmoother<InputMeshType>::DescribeNonTriangleFace(*input);
+  if (!nonTriangle.empty())
   {
-    itkExceptionMacro(<< "The input must be a triangle mesh, but face " << cell << " has " << numberOfPoints
-                      << " points");
+    itkExceptionMacro(<< nonTriangle);
   }
 
   this->CopyInputMeshToOutputMesh();
