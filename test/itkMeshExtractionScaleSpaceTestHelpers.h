@@ -80,23 +80,33 @@ InitialSphere()
   return ME::MakePerturbedGeodesicSphere(3, Chapter4SphereCenter(), 24.78, 0.471, 0.53, 100);
 }
 
-/** A smaller grid for the tests that need no Table 4.1 numbers: size^3 voxels of 1 mm. */
-inline ME::PhantomGrid
-SmallSphereGrid(unsigned int size)
+/** A smaller chapter-4 sphere for the tests that need no Table 4.1 numbers: size^3
+ * voxels of 1 mm, and a perturbed geodesic start mesh of mean radius `radius`
+ * (variance 0.2) about the grid's centre. */
+struct SmallSphere
 {
-  ME::PhantomGrid grid;
-  grid.size.Fill(size);
-  return grid;
-}
+  unsigned int size;
+  double       radius;
 
-/** A perturbed geodesic sphere of mean radius `radius` (variance 0.2) about the
- * centre of SmallSphereGrid(size). */
-inline ME::IndexedTriangleMesh
-SmallInitialSphere(unsigned int size, double radius)
-{
-  const auto c = ME::PhantomGridCenter(SmallSphereGrid(size));
-  return ME::MakePerturbedGeodesicSphere(3, ME::MakeVec3(c[0], c[1], c[2]), radius, 0.2, 0.53, 100);
-}
+  ME::PhantomGrid
+  Grid() const
+  {
+    ME::PhantomGrid grid;
+    grid.size.Fill(size);
+    return grid;
+  }
+  ImageType::Pointer
+  Image(double noise = 0.0) const
+  {
+    return SphereImage(this->Grid(), noise);
+  }
+  ME::IndexedTriangleMesh
+  InitialMesh() const
+  {
+    const auto c = ME::PhantomGridCenter(this->Grid());
+    return ME::MakePerturbedGeodesicSphere(3, ME::MakeVec3(c[0], c[1], c[2]), radius, 0.2, 0.53, 100);
+  }
+};
 } // namespace MeshExtractionScaleSpaceTest
 
 #endif

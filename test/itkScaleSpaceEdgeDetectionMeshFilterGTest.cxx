@@ -50,27 +50,8 @@ using MeshExtractionScaleSpaceTest::Chapter4SphereImage;
 using MeshExtractionScaleSpaceTest::InitialSphere;
 using MeshExtractionScaleSpaceTest::ToMesh;
 
-/** A smaller sphere for the tests that need no Table 4.1 numbers: 40^3 voxels of
- * 1 mm, the initial mesh of mean radius 9.8 mm. */
-constexpr unsigned int SmallSize = 40;
-
-ME::PhantomGrid
-SmallSphereGrid()
-{
-  return MeshExtractionScaleSpaceTest::SmallSphereGrid(SmallSize);
-}
-
-ImageType::Pointer
-SmallSphereImage(double noise = 0.0)
-{
-  return MeshExtractionScaleSpaceTest::SphereImage(SmallSphereGrid(), noise);
-}
-
-ME::IndexedTriangleMesh
-SmallInitialSphere()
-{
-  return MeshExtractionScaleSpaceTest::SmallInitialSphere(SmallSize, 9.8);
-}
+/** The smaller sphere of the tests that need no Table 4.1 numbers. */
+const MeshExtractionScaleSpaceTest::SmallSphere Small{ 40, 9.8 };
 
 /** Mean and population variance of the distances of the points from `center`. */
 std::pair<double, double>
@@ -430,9 +411,9 @@ TEST(ScaleSpaceEdgeDetectionMeshFilter, FindsTheChapter4Sphere)
 
 TEST(ScaleSpaceEdgeDetectionMeshFilter, KeepsTheScaleSpaceBetweenUpdates)
 {
-  const ImageType::Pointer image = SmallSphereImage();
+  const ImageType::Pointer image = Small.Image();
   auto                     filter = FilterType::New();
-  filter->SetInput(ToMesh(SmallInitialSphere()));
+  filter->SetInput(ToMesh(Small.InitialMesh()));
   filter->SetInputImage(image);
   filter->SetMaximumDeviation(2.0);
   filter->Update();
@@ -487,8 +468,8 @@ TEST(ScaleSpaceEdgeDetectionMeshFilter, AnisotropicRotatedEllipsoidIsFoundAsAccu
 
 TEST(ScaleSpaceEdgeDetectionMeshFilter, DeterministicWhateverTheNumberOfThreads)
 {
-  const ImageType::Pointer image = SmallSphereImage(2.0);
-  const auto               input = ToMesh(SmallInitialSphere());
+  const ImageType::Pointer image = Small.Image(2.0);
+  const auto               input = ToMesh(Small.InitialMesh());
   std::vector<Vec3>        reference;
   for (const unsigned int threads : { 1u, 3u })
   {

@@ -46,27 +46,8 @@ using MeshExtractionScaleSpaceTest::Chapter4SphereImage;
 using MeshExtractionScaleSpaceTest::InitialSphere;
 using MeshExtractionScaleSpaceTest::ToMesh;
 
-/** A smaller sphere for the tests that need no Table 4.1 numbers: 48^3 voxels of
- * 1 mm, the initial mesh of mean radius 11.8 mm. */
-constexpr unsigned int SmallSize = 48;
-
-ME::PhantomGrid
-SmallSphereGrid()
-{
-  return MeshExtractionScaleSpaceTest::SmallSphereGrid(SmallSize);
-}
-
-ImageType::Pointer
-SmallSphereImage(double noise = 0.0)
-{
-  return MeshExtractionScaleSpaceTest::SphereImage(SmallSphereGrid(), noise);
-}
-
-ME::IndexedTriangleMesh
-SmallInitialSphere()
-{
-  return MeshExtractionScaleSpaceTest::SmallInitialSphere(SmallSize, 11.8);
-}
+/** The smaller sphere of the tests that need no Table 4.1 numbers. */
+const MeshExtractionScaleSpaceTest::SmallSphere Small{ 48, 11.8 };
 
 ME::TriangleMeshQualityReport
 Analyze(const MeshType * mesh)
@@ -247,8 +228,8 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, AnisotropicRotatedEllipsoid)
 
 TEST(ScaleSpaceEdgeMeshRefinementFilter, DeterministicWhateverTheNumberOfThreads)
 {
-  const ImageType::Pointer image = SmallSphereImage(2.0);
-  const auto               input = ToMesh(SmallInitialSphere());
+  const ImageType::Pointer image = Small.Image(2.0);
+  const auto               input = ToMesh(Small.InitialMesh());
   std::vector<Vec3>        reference;
   for (const unsigned int threads : { 1u, 4u })
   {
@@ -280,8 +261,8 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, DeterministicWhateverTheNumberOfThreads
 // EdgeSwapQuadEdgeMeshFilter (boundary vertices keep their place). Both stay valid.
 TEST(ScaleSpaceEdgeMeshRefinementFilter, OpenMeshesAreRefinedThroughTheQuadEdgeSwapFilter)
 {
-  ME::IndexedTriangleMesh sphere = SmallInitialSphere();
-  const auto              c = ME::PhantomGridCenter(SmallSphereGrid());
+  ME::IndexedTriangleMesh sphere = Small.InitialMesh();
+  const auto              c = ME::PhantomGridCenter(Small.Grid());
   ME::IndexedTriangleMesh open;
   open.points = sphere.points;
   for (const auto & t : sphere.triangles)
@@ -302,7 +283,7 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, OpenMeshesAreRefinedThroughTheQuadEdgeS
 
   auto filter = FilterType::New();
   filter->SetInput(ToMesh(open));
-  filter->SetInputImage(SmallSphereImage(0.0));
+  filter->SetInputImage(Small.Image(0.0));
   filter->SetMaximumDeviation(2.0);
   filter->SetMaximumNumberOfCycles(2);
   filter->Update();
@@ -376,8 +357,8 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, RealHeadCTGetsMoreAccurateAndBetterShap
 TEST(ScaleSpaceEdgeMeshRefinementFilter, StopsAtTheCycleLimitAndReportsIt)
 {
   auto filter = FilterType::New();
-  filter->SetInput(ToMesh(SmallInitialSphere()));
-  filter->SetInputImage(SmallSphereImage(0.0));
+  filter->SetInput(ToMesh(Small.InitialMesh()));
+  filter->SetInputImage(Small.Image(0.0));
   filter->SetMaximumDeviation(2.0);
   filter->SetTargetQuality(1.0); // unreachable
   filter->SetMaximumNumberOfCycles(1);
