@@ -24,7 +24,11 @@
 #include "itkMath.h"
 
 #include <atomic>
+#if defined(__SSE2__)
+#  include <emmintrin.h>
+#endif
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -42,15 +46,190 @@ struct SurfaceNetsClassificationStatistics
   std::int64_t nanVoxel[3]{ 0, 0, 0 };
 };
 
+/** \brief Which voxels are inside: low <= v <= high, compared in the pixel type.
+ *
+ * The bounds are the exact pixel-type equivalents of a double iso-value or label
+ * (`static_cast<double>(v) >= iso` holds exactly when `v >= low` does), so the test
+ * is one or two comparisons the compiler vectorizes, with no conversion per voxel.
+ * A NaN voxel is never inside. \ingroup MeshExtraction */
+template <typename TPixel>
+struct SurfaceNetsVoxelRange
+{
+  TPixel low;
+  TPixel high;
+  bool   empty{ false }; ///< no value of the pixel type is inside
+
+  bool
+  operator()(TPixel v) const
+  {
+    return (v >= low) & (v <= high); // no branch: vectorizes
+  }
+
+  /** The voxels >= iso (aboveIsInside) or <= iso. */
+  static SurfaceNetsVoxelRange
+  FromIsoValue(double iso, bool aboveIsInside)
+  {
+    using Limits = std::numeric_limits<TPixel>;
+    SurfaceNetsVoxelRange r{ Limits::lowest(), Limits::max() };
+    if (std::isnan(iso))
+    {
+      return Never();
+    }
+    if constexpr (std::is_floating_point<TPixel>::value)
+    {
+      // The pixel-type value nearest to iso on the inside's side; infinities keep
+      // every finite voxel on the correct side.
+      TPixel t = static_cast<TPixel>(iso);
+      if (aboveIsInside)
+      {
+        if (static_cast<double>(t) < iso)
+        {
+          t = std::nextafter(t, Limits::infinity());
+        }
+        r.low = t;
+        r.high = Limits::infinity();
+      }
+      else
+      {
+        if (static_cast<double>(t) > iso)
+        {
+          t = std::nextafter(t, -Limits::infinity());
+        }
+        r.low = -Limits::infinity();
+        r.high = t;
+      }
+    }
+    else
+    {
+      const double lowest = static_cast<double>(Limits::lowest());
+      const double highest = static_cast<double>(Limits::max());
+      if (aboveIsInside)
+      {
+        const double t = std::ceil(iso);
+        if (t > highest)
+        {
+          return Never();
+        }
+        r.low = t <= lowest ? Limits::lowest() : static_cast<TPixel>(t);
+      }
+      else
+      {
+        const double t = std::floor(iso);
+        if (t < lowest)
+        {
+          return Never();
+        }
+        r.high = t >= highest ? Limits::max() : static_cast<TPixel>(t);
+      }
+    }
+    return r;
+  }
+
+  /** The voxels equal to `label`. */
+  static SurfaceNetsVoxelRange
+  FromLabel(double label)
+  {
+    using Limits = std::numeric_limits<TPixel>;
+    if (!(label >= static_cast<double>(Limits::lowest()) && label <= static_cast<double>(Limits::max())) ||
+        static_cast<double>(static_cast<TPixel>(label)) != label)
+    {
+      return Never(); // no pixel value equals the label
+    }
+    return SurfaceNetsVoxelRange{ static_cast<TPixel>(label), static_cast<TPixel>(label) };
+  }
+
+  static SurfaceNetsVoxelRange
+  Never()
+  {
+    using Limits = std::numeric_limits<TPixel>;
+    SurfaceNetsVoxelRange r{ Limits::max(), Limits::lowest() };
+    r.empty = true;
+    return r;
+  }
+};
+
+/** One voxel row of the classification: flags[x] = inside(row[x]) (NaN never
+ * inside), the row's extremes ignoring NaN (unchanged when every voxel is NaN),
+ * and whether it holds a NaN. Branch-free loops the compiler vectorizes for
+ * integer pixels; float rows use SSE2 where the compiler offers it, since the
+ * compiler may not reorder floating-point minimum/maximum reductions itself. */
+template <typename TPixel, typename TInside>
+void
+ClassifySurfaceNetsRow(const TPixel * row,
+                       std::int64_t   n,
+                       TInside        inside,
+                       std::uint8_t * flags,
+                       TPixel &       lowest,
+                       TPixel &       highest,
+                       bool &         hasNaN)
+{
+  std::int64_t x = 0;
+#if defined(__SSE2__)
+  if constexpr (std::is_same<TPixel, float>::value && std::is_same<TInside, SurfaceNetsVoxelRange<float>>::value)
+  {
+    const __m128  low = _mm_set1_ps(inside.low);
+    const __m128  high = _mm_set1_ps(inside.high);
+    const __m128i one = _mm_set1_epi8(1);
+    __m128        lo = _mm_set1_ps(lowest);
+    __m128        hi = _mm_set1_ps(highest);
+    __m128        nan = _mm_setzero_ps();
+    for (; x + 16 <= n; x += 16)
+    {
+      __m128i masks[4];
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        const __m128 v = _mm_loadu_ps(row + x + 4 * k);
+        masks[k] = _mm_castps_si128(_mm_and_ps(_mm_cmpge_ps(v, low), _mm_cmple_ps(v, high)));
+        lo = _mm_min_ps(v, lo); // a NaN v leaves lo
+        hi = _mm_max_ps(v, hi);
+        nan = _mm_or_ps(nan, _mm_cmpunord_ps(v, v));
+      }
+      const __m128i bytes = _mm_packs_epi16(_mm_packs_epi32(masks[0], masks[1]), _mm_packs_epi32(masks[2], masks[3]));
+      _mm_storeu_si128(reinterpret_cast<__m128i *>(flags + x), _mm_and_si128(bytes, one));
+    }
+    alignas(16) float l[4];
+    alignas(16) float h[4];
+    _mm_store_ps(l, lo);
+    _mm_store_ps(h, hi);
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      lowest = l[k] < lowest ? l[k] : lowest;
+      highest = h[k] > highest ? h[k] : highest;
+    }
+    hasNaN = hasNaN || _mm_movemask_ps(nan) != 0;
+  }
+#endif
+  for (std::int64_t i = x; i < n; ++i)
+  {
+    flags[i] = static_cast<std::uint8_t>(inside(row[i]));
+  }
+  for (std::int64_t i = x; i < n; ++i)
+  {
+    lowest = row[i] < lowest ? row[i] : lowest;
+    highest = row[i] > highest ? row[i] : highest;
+  }
+  if constexpr (std::is_floating_point<TPixel>::value)
+  {
+    int nan = 0;
+    for (std::int64_t i = x; i < n; ++i)
+    {
+      nan |= (row[i] != row[i]) ? 1 : 0;
+    }
+    hasNaN = hasNaN || nan != 0;
+  }
+}
+
 /** Stage 1 of SurfaceNets: find the surface cells of an image.
  *
  * A cell is the cube between 8 neighbouring voxel centres; cells run from -1 to
  * N-1 along each axis, so that voxels outside the image count as outside and
- * objects touching the image border are closed. `inside(pixel)` classifies a voxel.
- * The image is read one z-slab per work unit, one pair of slices at a time, and a
- * row of cells is only visited between the first and last inside voxel of its four
- * voxel rows; memory beyond the image is two slices per work unit plus the surface
- * cells. Cells come out sorted by (z, y, x) whatever the number of threads.
+ * objects touching the image border are closed. `inside(pixel)` classifies a voxel
+ * (a NaN voxel is never inside, and reported). The image is read one z-slab per
+ * work unit, one slice at a time, in branch-free row passes the compiler
+ * vectorizes; a row of cells is only visited between the first and last inside
+ * voxel of its four voxel rows, eight cells at a time. Memory beyond the image is
+ * two slices of flags per work unit plus the surface cells. Cells come out sorted
+ * by (z, y, x) whatever the number of threads.
  * \ingroup MeshExtraction */
 template <typename TImage, typename TInside>
 SurfaceNetsClassificationStatistics
@@ -72,6 +251,9 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
     spread[c] = static_cast<std::uint8_t>((c & 1u) | ((c & 2u) << 1) | ((c & 4u) << 2) | ((c & 8u) << 3));
   }
 
+  // Rows of flags are padded: one zero byte before x = 0 and enough after nx - 1 for
+  // 8-byte reads, so that cells x = -1 .. nx-1 read columns x and x + 1 without tests.
+  const std::int64_t                    stride = ((nx + 2 + 7) / 8 + 1) * 8;
   const std::size_t                     numberOfLayers = static_cast<std::size_t>(nz + 1); // cell layers z = -1 .. nz-1
   const std::size_t                     layersPerBlock = std::max<std::size_t>(1, numberOfLayers / 64);
   const std::size_t                     numberOfBlocks = (numberOfLayers + layersPerBlock - 1) / layersPerBlock;
@@ -83,7 +265,9 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
     layersPerBlock,
     [&](std::size_t begin, std::size_t end, std::size_t block) {
       SurfaceNetsClassificationStatistics & stats = statistics[block];
-      // A slice of inside flags and, per voxel row, the first and last inside x.
+      // A slice of inside flags and, per voxel row, the first and last inside x
+      // (last < first: no inside voxel). Row y of a slice starts at flags + (y+1) * stride + 1:
+      // rows y = -1 and y = ny are all zero, as are slices beyond the image.
       struct Slice
       {
         std::int64_t              z{ std::numeric_limits<std::int64_t>::min() };
@@ -92,13 +276,23 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
         std::vector<std::int64_t> last;
       };
       Slice slices[2];
-      auto  fill = [&](Slice & s, std::int64_t z) {
+      for (auto & s : slices)
+      {
+        s.flags.assign(static_cast<std::size_t>((ny + 2) * stride), 0);
+        s.first.assign(static_cast<std::size_t>(ny + 2), 0);
+        s.last.assign(static_cast<std::size_t>(ny + 2), -1);
+      }
+      auto fill = [&](Slice & s, std::int64_t z) {
+        const bool wasEmpty = s.z < 0 || s.z >= nz;
         s.z = z;
-        s.flags.assign(static_cast<std::size_t>(nx * ny), 0);
-        s.first.assign(static_cast<std::size_t>(ny), -1);
-        s.last.assign(static_cast<std::size_t>(ny), -2);
         if (z < 0 || z >= nz)
         {
+          if (!wasEmpty)
+          {
+            std::fill(s.flags.begin(), s.flags.end(), std::uint8_t{ 0 });
+            std::fill(s.first.begin(), s.first.end(), 0);
+            std::fill(s.last.begin(), s.last.end(), -1);
+          }
           return;
         }
         // Each slice is read by the layers below and above it; count it once, in
@@ -107,89 +301,94 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
         for (std::int64_t y = 0; y < ny; ++y)
         {
           const PixelType * row = buffer + (z * ny + y) * nx;
-          std::uint8_t *    flags = s.flags.data() + y * nx;
-          // Branch-free passes the compiler vectorizes: the inside flags, then (floating
-          // point) whether the row has a NaN, then the first and last inside voxel and
-          // the statistics. A NaN voxel is never inside.
-          std::int64_t inRow = 0;
-          for (std::int64_t x = 0; x < nx; ++x)
-          {
-            const std::uint8_t in = inside(row[x]) ? 1 : 0;
-            flags[x] = in;
-            inRow += in;
-          }
+          std::uint8_t *    flags = s.flags.data() + (y + 1) * stride + 1;
+          // A row starting with NaN would poison the extremes: start from its first number.
+          std::int64_t start = 0;
           if constexpr (std::is_floating_point<PixelType>::value)
           {
-            int nan = 0;
+            while (start < nx && std::isnan(row[start]))
+            {
+              ++start;
+            }
+          }
+          PixelType lowest = row[std::min(start, nx - 1)];
+          PixelType highest = lowest;
+          bool      hasNaN = false;
+          ClassifySurfaceNetsRow(row, nx, inside, flags, lowest, highest, hasNaN);
+          if (start < nx && count)
+          {
+            stats.minimum = std::min(stats.minimum, static_cast<double>(lowest));
+            stats.maximum = std::max(stats.maximum, static_cast<double>(highest));
+          }
+          if (hasNaN)
+          {
             for (std::int64_t x = 0; x < nx; ++x)
             {
-              nan |= (row[x] != row[x]) ? 1 : 0;
-            }
-            if (nan)
-            {
-              for (std::int64_t x = 0; x < nx; ++x)
+              if (std::isnan(static_cast<double>(row[x])))
               {
-                if (std::isnan(row[x]))
+                if (!stats.foundNaN)
                 {
-                  if (!stats.foundNaN)
-                  {
-                    stats.foundNaN = true;
-                    stats.nanVoxel[0] = x;
-                    stats.nanVoxel[1] = y;
-                    stats.nanVoxel[2] = z;
-                  }
-                  inRow -= flags[x];
-                  flags[x] = 0;
+                  stats.foundNaN = true;
+                  stats.nanVoxel[0] = x;
+                  stats.nanVoxel[1] = y;
+                  stats.nanVoxel[2] = z;
                 }
+                flags[x] = 0;
               }
             }
           }
-          if (inRow > 0)
+          // First and last inside voxel, 8 flags at a time (the padding is zero).
+          std::int64_t first = 0;
+          std::int64_t last = -1;
           {
-            std::int64_t first = 0;
-            while (flags[first] == 0)
+            const std::int64_t words = (nx + 7) / 8;
+            auto               word = [flags](std::int64_t w) {
+              std::uint64_t value;
+              std::memcpy(&value, flags + 8 * w, 8);
+              return value;
+            };
+            std::int64_t w = 0;
+            while (w < words && word(w) == 0)
             {
-              ++first;
+              ++w;
             }
-            std::int64_t last = nx - 1;
-            while (flags[last] == 0)
+            if (w < words)
             {
-              --last;
+              first = 8 * w;
+              while (flags[first] == 0)
+              {
+                ++first;
+              }
+              w = words - 1;
+              while (word(w) == 0)
+              {
+                --w;
+              }
+              last = 8 * w + 7;
+              while (flags[last] == 0)
+              {
+                --last;
+              }
             }
-            s.first[y] = first;
-            s.last[y] = last;
           }
+          s.first[y + 1] = first;
+          s.last[y + 1] = last;
           if (count)
           {
-            // NaN compares false, so it changes neither extreme.
-            PixelType lowest = row[0];
-            PixelType highest = row[0];
-            for (std::int64_t x = 0; x < nx; ++x)
+            if (last >= first)
             {
-              lowest = row[x] < lowest ? row[x] : lowest;
-              highest = row[x] > highest ? row[x] : highest;
-            }
-            if (!(lowest != lowest)) // a row that starts with NaN: fall back
-            {
-              stats.minimum = std::min(stats.minimum, static_cast<double>(lowest));
-              stats.maximum = std::max(stats.maximum, static_cast<double>(highest));
-            }
-            else
-            {
-              for (std::int64_t x = 0; x < nx; ++x)
+              std::size_t inRow = 0;
+              for (std::int64_t x = first; x <= last; ++x)
               {
-                if (!(row[x] != row[x]))
-                {
-                  stats.minimum = std::min(stats.minimum, static_cast<double>(row[x]));
-                  stats.maximum = std::max(stats.maximum, static_cast<double>(row[x]));
-                }
+                inRow += flags[x];
               }
+              stats.insideVoxels += inRow;
             }
-            stats.insideVoxels += static_cast<std::size_t>(inRow);
           }
         }
       };
-      std::vector<SurfaceCell> & cells = found[block];
+      std::vector<SurfaceCell>  cells = std::move(found[block]);
+      std::vector<std::uint8_t> columns(static_cast<std::size_t>(stride), 0);
       for (std::size_t layer = begin; layer < end; ++layer)
       {
         const std::int64_t z = static_cast<std::int64_t>(layer) - 1; // cell layer between slices z and z+1
@@ -203,56 +402,50 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
         fill(*upper, z + 1);
         for (std::int64_t y = -1; y < ny; ++y)
         {
-          // The four voxel rows (y, z), (y+1, z), (y, z+1), (y+1, z+1).
-          const std::uint8_t * rows[4] = { nullptr, nullptr, nullptr, nullptr };
-          std::int64_t         xFirst = std::numeric_limits<std::int64_t>::max();
-          std::int64_t         xLast = -2;
+          // The four voxel rows (y, z), (y+1, z), (y, z+1), (y+1, z+1), padded rows
+          // of zeros beyond the image.
           const Slice *        slicesOfRow[4] = { lower, lower, upper, upper };
           const std::int64_t   ys[4] = { y, y + 1, y, y + 1 };
+          const std::uint8_t * rows[4];
+          std::int64_t         xFirst = std::numeric_limits<std::int64_t>::max();
+          std::int64_t         xLast = -1;
           for (unsigned int r = 0; r < 4; ++r)
           {
             const Slice & s = *slicesOfRow[r];
-            if (ys[r] < 0 || ys[r] >= ny || s.z < 0 || s.z >= nz || s.first[ys[r]] < 0)
+            rows[r] = s.flags.data() + (ys[r] + 1) * stride + 1;
+            if (s.last[ys[r] + 1] >= s.first[ys[r] + 1])
             {
-              continue;
+              xFirst = std::min(xFirst, s.first[ys[r] + 1]);
+              xLast = std::max(xLast, s.last[ys[r] + 1]);
             }
-            rows[r] = s.flags.data() + ys[r] * nx;
-            xFirst = std::min(xFirst, s.first[ys[r]]);
-            xLast = std::max(xLast, s.last[ys[r]]);
           }
           if (xLast < 0)
           {
             continue; // no inside voxel: no surface cell in this row
           }
-          auto column = [&](std::int64_t x) -> unsigned int {
-            if (x < 0 || x >= nx)
-            {
-              return 0;
-            }
-            unsigned int c = 0;
-            for (unsigned int r = 0; r < 4; ++r)
-            {
-              c |= (rows[r] != nullptr && rows[r][x]) ? (1u << r) : 0u;
-            }
-            return c;
-          };
-          unsigned int previous = column(xFirst - 1);
+          // Column codes (4 bits: the four rows) of voxel columns xFirst-1 .. xLast+1.
+          std::uint8_t * code = columns.data() + 1; // code[x], x >= -1
+          for (std::int64_t x = xFirst - 1; x <= xLast + 1; ++x)
+          {
+            code[x] = static_cast<std::uint8_t>(rows[0][x] | (rows[1][x] << 1) | (rows[2][x] << 2) | (rows[3][x] << 3));
+          }
+          // Cell x (columns x, x+1) is a surface cell unless its 8 corners agree.
           for (std::int64_t x = xFirst - 1; x <= xLast; ++x)
           {
-            const unsigned int next = column(x + 1);
-            const auto         configuration = static_cast<std::uint8_t>(spread[previous] | (spread[next] << 1));
-            if (configuration != 0 && configuration != 255)
+            const unsigned int a = code[x];
+            const unsigned int b = code[x + 1];
+            if ((a | b) != 0 && (a & b) != 15)
             {
               cells.push_back({ static_cast<std::int32_t>(x),
                                 static_cast<std::int32_t>(y),
                                 static_cast<std::int32_t>(z),
-                                configuration,
+                                static_cast<std::uint8_t>(spread[a] | (spread[b] << 1)),
                                 0 });
             }
-            previous = next;
           }
         }
       }
+      found[block] = std::move(cells);
     },
     numberOfWorkUnits);
 

@@ -141,6 +141,12 @@ public:
     return m_Size;
   }
 
+  const PixelType *
+  GetBufferPointer() const
+  {
+    return m_Buffer;
+  }
+
 private:
   const PixelType * m_Buffer;
   double            m_IsoValue;
@@ -297,6 +303,12 @@ struct SurfaceNetsRelaxationResult
 inline Vec3
 ConstrainToBox(const Vec3 & p, const Vec3 & d, const Vec3 & lower, const Vec3 & upper)
 {
+  const Vec3 q = p + d;
+  if (q[0] >= lower[0] && q[0] <= upper[0] && q[1] >= lower[1] && q[1] <= upper[1] && q[2] >= lower[2] &&
+      q[2] <= upper[2])
+  {
+    return d; // the whole step stays in the box (the common case: no division)
+  }
   double t = 1.0;
   for (unsigned int k = 0; k < 3; ++k)
   {
@@ -337,14 +349,45 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   {
     itkGenericExceptionMacro("SurfaceNets: gradient relaxation needs a greyscale image.");
   }
-  const Matrix<double, 3, 3> M = parameters.indexToPhysical;
-  const Matrix<double, 3, 3> Minv(M.GetInverse());
-  const Matrix<double, 3, 3> MinvT(Minv.GetTranspose());
+  // The matrices as plain 3x3 products the compiler inlines (itk::Matrix's are calls).
+  struct Mat3
+  {
+    double m[3][3];
+    explicit Mat3(const Matrix<double, 3, 3> & A)
+    {
+      for (unsigned int r = 0; r < 3; ++r)
+      {
+        for (unsigned int c = 0; c < 3; ++c)
+        {
+          m[r][c] = A[r][c];
+        }
+      }
+    }
+    Vec3
+    operator*(const Vec3 & v) const
+    {
+      Vec3 out;
+      out[0] = m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2];
+      out[1] = m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2];
+      out[2] = m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2];
+      return out;
+    }
+    double
+    operator()(unsigned int r, unsigned int c) const
+    {
+      return m[r][c];
+    }
+  };
+  const Matrix<double, 3, 3> matrix = parameters.indexToPhysical;
+  const Matrix<double, 3, 3> inverse(matrix.GetInverse());
+  const Mat3                 M(matrix);
+  const Mat3                 Minv(inverse);
+  const Mat3                 MinvT(Matrix<double, 3, 3>(inverse.GetTranspose()));
   double                     smallestSpacing = std::numeric_limits<double>::max();
   double                     cellDiagonal = 0.0;
   for (unsigned int c = 0; c < 3; ++c)
   {
-    const double length = std::sqrt(M[0][c] * M[0][c] + M[1][c] * M[1][c] + M[2][c] * M[2][c]);
+    const double length = std::sqrt(M(0, c) * M(0, c) + M(1, c) * M(1, c) + M(2, c) * M(2, c));
     smallestSpacing = std::min(smallestSpacing, length);
     cellDiagonal += length * length;
   }
@@ -374,9 +417,35 @@ RelaxSurfaceNet(SurfaceNet &                            net,
       numberOfNodes,
       BlockSize,
       [&](std::size_t begin, std::size_t end, std::size_t) {
+        const std::int64_t * size = sampler->GetSize();
+        const std::int64_t   sy = size[0];
+        const std::int64_t   sz = size[0] * size[1];
         for (std::size_t i = begin; i < end; ++i)
         {
           const SurfaceCell & c = net.cells[net.nodeCell[i]];
+          // The 4x4x4 voxels around the cell (its corners and their central-difference
+          // neighbours), read straight from the buffer when all are inside the image.
+          const bool interior =
+            c.x >= 1 && c.y >= 1 && c.z >= 1 && c.x + 2 < size[0] && c.y + 2 < size[1] && c.z + 2 < size[2];
+          if (interior)
+          {
+            const auto * b = sampler->GetBufferPointer() + (c.z * sz + c.y * sy + c.x);
+            for (unsigned int k = 0; k < 8; ++k)
+            {
+              const auto * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy + (k & 1);
+              cache[i].value[k] = static_cast<float>(static_cast<double>(v[0]));
+              if (parameters.centralDifferences)
+              {
+                cache[i].gradient[k][0] =
+                  static_cast<float>(0.5 * (static_cast<double>(v[1]) - static_cast<double>(v[-1])));
+                cache[i].gradient[k][1] =
+                  static_cast<float>(0.5 * (static_cast<double>(v[sy]) - static_cast<double>(v[-sy])));
+                cache[i].gradient[k][2] =
+                  static_cast<float>(0.5 * (static_cast<double>(v[sz]) - static_cast<double>(v[-sz])));
+              }
+            }
+            continue;
+          }
           for (unsigned int k = 0; k < 8; ++k)
           {
             const std::int64_t x = c.x + (k & 1);
@@ -521,10 +590,10 @@ RelaxSurfaceNet(SurfaceNet &                            net,
               moved += ConstrainToBox(p, d, net.boxLower[i], net.boxUpper[i]);
             }
           }
-          largest = std::max(largest, Norm(moved - p));
+          largest = std::max(largest, SquaredNorm(moved - p));
           next[i] = moved;
         }
-        blockMaximum[block] = largest;
+        blockMaximum[block] = std::sqrt(largest);
       },
       parameters.numberOfWorkUnits);
     net.positions.swap(next);

@@ -107,18 +107,18 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
       }
       stats = MeshExtraction::ClassifySurfaceCells(
         labels,
-        [label](typename LabelImageType::PixelType v) { return static_cast<double>(v) == label; },
+        MeshExtraction::SurfaceNetsVoxelRange<typename LabelImageType::PixelType>::FromLabel(label),
         m_Net,
         workUnits);
       // The greyscale range and NaN check, for the relaxation.
       MeshExtraction::SurfaceNet scratch;
       greyscale = MeshExtraction::ClassifySurfaceCells(
-        input, [](InputPixelType) { return false; }, scratch, workUnits);
+        input, MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::Never(), scratch, workUnits);
     }
     else
     {
       stats = MeshExtraction::ClassifySurfaceCells(
-        input, [label](InputPixelType v) { return static_cast<double>(v) == label; }, m_Net, workUnits);
+        input, MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::FromLabel(label), m_Net, workUnits);
       greyscale = stats;
     }
     if (stats.foundNaN)
@@ -133,17 +133,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
   }
   else
   {
-    const double iso = m_IsoValue;
-    if (m_InsideIsAboveIsoValue)
-    {
-      greyscale = MeshExtraction::ClassifySurfaceCells(
-        input, [iso](InputPixelType v) { return static_cast<double>(v) >= iso; }, m_Net, workUnits);
-    }
-    else
-    {
-      greyscale = MeshExtraction::ClassifySurfaceCells(
-        input, [iso](InputPixelType v) { return static_cast<double>(v) <= iso; }, m_Net, workUnits);
-    }
+    greyscale = MeshExtraction::ClassifySurfaceCells(
+      input,
+      MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::FromIsoValue(m_IsoValue, m_InsideIsAboveIsoValue),
+      m_Net,
+      workUnits);
     if (!greyscale.foundNaN && greyscale.minimum == greyscale.maximum)
     {
       itkExceptionMacro("The input image is constant (every voxel is " << greyscale.minimum
@@ -380,15 +374,36 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   output->Initialize();
   using PointType = typename OutputMeshType::PointType;
   using CoordinateType = typename PointType::ValueType;
-  output->GetPoints()->Reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
+  auto toPoint = [&points](std::size_t i) {
     PointType p;
     for (unsigned int d = 0; d < 3; ++d)
     {
       p[d] = static_cast<CoordinateType>(points[i][d]);
     }
-    output->SetPoint(static_cast<typename OutputMeshType::PointIdentifier>(i), p);
+    return p;
+  };
+  using PointsContainer = typename OutputMeshType::PointsContainer;
+  if constexpr (std::is_same<PointsContainer,
+                             VectorContainer<typename PointsContainer::ElementIdentifier, PointType>>::value)
+  {
+    // Fill the container's vector directly: InsertElement marks the container
+    // modified (a time stamp and an event) for every point.
+    auto   container = PointsContainer::New();
+    auto & vector = container->CastToSTLContainer();
+    vector.reserve(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      vector.push_back(toPoint(i));
+    }
+    output->SetPoints(container);
+  }
+  else
+  {
+    output->GetPoints()->Reserve(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      output->SetPoint(static_cast<typename OutputMeshType::PointIdentifier>(i), toPoint(i));
+    }
   }
   if constexpr (Detail::IsQuadEdgeMesh<OutputMeshType>::value)
   {
@@ -408,22 +423,39 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   else
   {
     using CellType = typename OutputMeshType::CellType;
-    for (std::size_t f = 0; f < polygons.size(); ++f)
-    {
-      typename CellType::CellAutoPointer cell;
-      if (polygonSize == 3)
-      {
-        cell.TakeOwnership(new TriangleCell<CellType>);
-      }
-      else
-      {
-        cell.TakeOwnership(new QuadrilateralCell<CellType>);
-      }
+    using CellsContainer = typename OutputMeshType::CellsContainer;
+    auto makeCell = [&](std::size_t f) {
+      CellType * cell = polygonSize == 3 ? static_cast<CellType *>(new TriangleCell<CellType>)
+                                         : static_cast<CellType *>(new QuadrilateralCell<CellType>);
       for (unsigned int k = 0; k < polygonSize; ++k)
       {
         cell->SetPointId(k, polygons[f][k]);
       }
-      output->SetCell(static_cast<typename OutputMeshType::CellIdentifier>(f), cell);
+      return cell;
+    };
+    if constexpr (std::is_same<CellsContainer,
+                               VectorContainer<typename CellsContainer::ElementIdentifier, CellType *>>::value)
+    {
+      // As for the points. The mesh owns the cells (itk::Mesh's default,
+      // CellsAllocatedDynamicallyCellByCell) from the start, so an allocation failure
+      // midway frees those made.
+      auto container = CellsContainer::New();
+      output->SetCells(container);
+      auto & vector = container->CastToSTLContainer();
+      vector.reserve(polygons.size());
+      for (std::size_t f = 0; f < polygons.size(); ++f)
+      {
+        vector.push_back(makeCell(f));
+      }
+    }
+    else
+    {
+      for (std::size_t f = 0; f < polygons.size(); ++f)
+      {
+        typename CellType::CellAutoPointer cell;
+        cell.TakeOwnership(makeCell(f));
+        output->SetCell(static_cast<typename OutputMeshType::CellIdentifier>(f), cell);
+      }
     }
   }
 }

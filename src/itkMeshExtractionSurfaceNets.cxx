@@ -404,7 +404,9 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
     itkGenericExceptionMacro("SurfaceNets: internal error: a crossing voxel edge lacks one of its four surface cells.");
   }
 
-  // Links: the edges of the quads.
+  // Links: the edges of the quads. In a 2-manifold net every link is the edge of two
+  // quads, so each node gathers its links twice: sort the few (insertion sort) and drop
+  // repeats, in parallel over blocks of nodes.
   std::vector<std::uint32_t> degree(numberOfNodes + 1, 0);
   for (const auto & quad : net.quads)
   {
@@ -415,27 +417,54 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
   }
   std::partial_sum(degree.begin(), degree.end(), degree.begin());
   std::vector<std::uint32_t> all(degree.back());
-  std::vector<std::uint32_t> cursor(degree.begin(), degree.end() - 1);
-  for (const auto & quad : net.quads)
   {
-    for (unsigned int k = 0; k < 4; ++k)
+    std::vector<std::uint32_t> cursor(degree.begin(), degree.end() - 1);
+    for (const auto & quad : net.quads)
     {
-      all[cursor[quad[k]]++] = quad[(k + 1) % 4];
-      all[cursor[quad[k]]++] = quad[(k + 3) % 4];
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        std::uint32_t & c = cursor[quad[k]];
+        all[c++] = quad[(k + 1) % 4];
+        all[c++] = quad[(k + 3) % 4];
+      }
     }
   }
-  net.neighborStart.assign(numberOfNodes + 1, 0);
-  net.neighbors.clear();
-  net.neighbors.reserve(all.size() / 2 + numberOfNodes);
-  for (std::uint32_t v = 0; v < numberOfNodes; ++v)
-  {
-    auto first = all.begin() + degree[v];
-    auto last = all.begin() + degree[v + 1];
-    std::sort(first, last);
-    last = std::unique(first, last);
-    net.neighbors.insert(net.neighbors.end(), first, last);
-    net.neighborStart[v + 1] = static_cast<std::uint32_t>(net.neighbors.size());
-  }
+  std::vector<std::uint32_t> unique(numberOfNodes + 1, 0);
+  ParallelForBlocks(
+    numberOfNodes,
+    BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t v = begin; v < end; ++v)
+      {
+        std::uint32_t * first = all.data() + degree[v];
+        std::uint32_t * last = all.data() + degree[v + 1];
+        for (std::uint32_t * i = first + 1; i < last; ++i)
+        {
+          const std::uint32_t value = *i;
+          std::uint32_t *     j = i;
+          for (; j > first && *(j - 1) > value; --j)
+          {
+            *j = *(j - 1);
+          }
+          *j = value;
+        }
+        unique[v + 1] = static_cast<std::uint32_t>(std::unique(first, last) - first);
+      }
+    },
+    numberOfWorkUnits);
+  std::partial_sum(unique.begin(), unique.end(), unique.begin());
+  net.neighbors.resize(unique.back());
+  ParallelForBlocks(
+    numberOfNodes,
+    BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t v = begin; v < end; ++v)
+      {
+        std::copy_n(all.data() + degree[v], unique[v + 1] - unique[v], net.neighbors.data() + unique[v]);
+      }
+    },
+    numberOfWorkUnits);
+  net.neighborStart = std::move(unique);
 }
 
 void

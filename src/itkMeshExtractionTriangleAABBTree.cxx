@@ -96,7 +96,7 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
     order[i] = keys[i].second;
   }
 
-  constexpr std::uint32_t LeafSize = 4;
+  constexpr std::uint32_t LeafSize = 16;
   struct Task
   {
     std::uint32_t node;

@@ -18,6 +18,7 @@
 #include "itkSurfaceNetsImageToMeshFilter.h"
 #include "itkBinaryMask3DMeshSource.h"
 #include "itkMeshExtractionPhantoms.h"
+#include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkTriangleMeshQualityCalculator.h"
@@ -278,6 +279,176 @@ TEST(SurfaceNetsImageToMeshFilter, RandomVolumesGiveValidClosedSurfaces)
       const auto high = Measure(filter->GetOutput());
       ASSERT_TRUE(high.IsValidClosedSurface()) << "high-quality trial " << trial << '\n' << Text(high);
       ASSERT_EQ(high.eulerCharacteristic, sna.eulerCharacteristic) << "high-quality trial " << trial;
+    }
+  }
+}
+
+template <typename TPixel>
+void
+CheckVoxelRange(const std::vector<double> & isoValues, const std::vector<TPixel> & voxels)
+{
+  using Range = ME::SurfaceNetsVoxelRange<TPixel>;
+  for (double iso : isoValues)
+  {
+    const Range above = Range::FromIsoValue(iso, true);
+    const Range below = Range::FromIsoValue(iso, false);
+    const Range label = Range::FromLabel(iso);
+    for (TPixel v : voxels)
+    {
+      const double d = static_cast<double>(v);
+      ASSERT_EQ(above(v), d >= iso) << "v " << d << " >= iso " << iso;
+      ASSERT_EQ(below(v), d <= iso) << "v " << d << " <= iso " << iso;
+      ASSERT_EQ(label(v), d == iso) << "v " << d << " == label " << iso;
+    }
+  }
+}
+
+TEST(SurfaceNetsImageToMeshFilter, VoxelRangeAgreesExactlyWithTheDoubleComparison)
+{
+  // The classification compares voxels in their own type; the bounds must give
+  // exactly the comparison with the double iso-value or label, at every edge.
+  std::vector<double> isoValues = { 0.0,     -0.0,    0.1,    -0.1,   0.5,         1.0,    2.5,     255.0,
+                                    255.5,   256.0,   -0.5,   -1.0,   -128.5,      127.5,  300.0,   300.5,
+                                    -1024.,  1e-40,   -1e-40, 1e-300, 1e300,       -1e300, 32767.5, -32768.5,
+                                    65535.0, 65535.5, 3.4e38, 1e39,   std::nan("") };
+  std::mt19937        rng(7);
+  {
+    std::vector<float> voxels = { 0.0f,
+                                  -0.0f,
+                                  1.0f,
+                                  -1.0f,
+                                  255.0f,
+                                  300.0f,
+                                  1e-40f,
+                                  -1e-40f,
+                                  3.4e38f,
+                                  -3.4e38f,
+                                  std::numeric_limits<float>::infinity(),
+                                  -std::numeric_limits<float>::infinity(),
+                                  std::numeric_limits<float>::quiet_NaN() };
+    for (double iso : isoValues)
+    {
+      const float f = static_cast<float>(iso);
+      voxels.insert(voxels.end(),
+                    { f,
+                      std::nextafter(f, std::numeric_limits<float>::infinity()),
+                      std::nextafter(f, -std::numeric_limits<float>::infinity()) });
+    }
+    std::uniform_real_distribution<float> u(-400.0f, 400.0f);
+    for (int i = 0; i < 200; ++i)
+    {
+      voxels.push_back(u(rng));
+    }
+    CheckVoxelRange<float>(isoValues, voxels);
+    std::vector<double> doubles(voxels.begin(), voxels.end());
+    doubles.insert(doubles.end(), isoValues.begin(), isoValues.end());
+    CheckVoxelRange<double>(isoValues, doubles);
+  }
+  std::vector<short> shorts = { -32768, -32767, -1025, -1024, -129, -128, -1,  0,    1,
+                                2,      127,    255,   256,   299,  300,  301, 32767 };
+  CheckVoxelRange<short>(isoValues, shorts);
+  std::vector<unsigned char> bytes;
+  for (int v = 0; v < 256; ++v)
+  {
+    bytes.push_back(static_cast<unsigned char>(v));
+  }
+  CheckVoxelRange<unsigned char>(isoValues, bytes);
+  std::vector<unsigned short> words = { 0, 1, 2, 255, 256, 299, 300, 301, 32767, 32768, 65534, 65535 };
+  CheckVoxelRange<unsigned short>(isoValues, words);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
+{
+  // Every cell (x, y, z in -1 .. N-1, voxels beyond the image outside) whose 8
+  // corners disagree, with its configuration, in (z, y, x) order; and the
+  // statistics, on random volumes of awkward sizes (rows shorter and longer than
+  // the 16-voxel vector step, with NaN voxels in some).
+  std::mt19937                          rng(11);
+  std::uniform_real_distribution<float> value(0.0f, 1.0f);
+  const unsigned int                    sizes[][3] = { { 1, 1, 1 },  { 3, 2, 1 },  { 7, 5, 4 },  { 16, 3, 3 },
+                                                       { 17, 4, 2 }, { 33, 3, 5 }, { 40, 1, 3 }, { 5, 9, 8 } };
+  for (int trial = 0; trial < 64; ++trial)
+  {
+    SCOPED_TRACE(trial);
+    const auto & size = sizes[trial % 8];
+    auto         image = MakeImage<FloatImage>(size[0], size[1], size[2]);
+    const double density = 0.1 + 0.8 * value(rng);
+    const bool   withNaN = trial % 5 == 4;
+    const auto   n = image->GetBufferedRegion().GetNumberOfPixels();
+    float *      buffer = image->GetBufferPointer();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      buffer[i] = value(rng);
+      if (withNaN && value(rng) < 0.05f)
+      {
+        buffer[i] = std::numeric_limits<float>::quiet_NaN();
+      }
+    }
+    const bool     below = trial % 2 == 0;
+    ME::SurfaceNet net;
+    const auto     stats = ME::ClassifySurfaceCells(
+      image.GetPointer(), ME::SurfaceNetsVoxelRange<float>::FromIsoValue(density, !below), net, 1 + trial % 3);
+    auto inside = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      if (x < 0 || y < 0 || z < 0 || x >= size[0] || y >= size[1] || z >= size[2])
+      {
+        return false;
+      }
+      const float v = buffer[(z * size[1] + y) * size[0] + x];
+      return below ? static_cast<double>(v) <= density : static_cast<double>(v) >= density;
+    };
+    std::vector<ME::SurfaceCell> expected;
+    for (std::int64_t z = -1; z < size[2]; ++z)
+    {
+      for (std::int64_t y = -1; y < size[1]; ++y)
+      {
+        for (std::int64_t x = -1; x < size[0]; ++x)
+        {
+          unsigned int configuration = 0;
+          for (unsigned int k = 0; k < 8; ++k)
+          {
+            configuration |= inside(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) ? (1u << k) : 0u;
+          }
+          if (configuration != 0 && configuration != 255)
+          {
+            expected.push_back({ static_cast<std::int32_t>(x),
+                                 static_cast<std::int32_t>(y),
+                                 static_cast<std::int32_t>(z),
+                                 static_cast<std::uint8_t>(configuration) });
+          }
+        }
+      }
+    }
+    ASSERT_EQ(net.cells.size(), expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i)
+    {
+      ASSERT_EQ(net.cells[i].x, expected[i].x) << "cell " << i;
+      ASSERT_EQ(net.cells[i].y, expected[i].y) << "cell " << i;
+      ASSERT_EQ(net.cells[i].z, expected[i].z) << "cell " << i;
+      ASSERT_EQ(int{ net.cells[i].configuration }, int{ expected[i].configuration }) << "cell " << i;
+    }
+    double       minimum = std::numeric_limits<double>::max();
+    double       maximum = std::numeric_limits<double>::lowest();
+    std::size_t  insideVoxels = 0;
+    std::int64_t firstNaN = -1;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (std::isnan(buffer[i]))
+      {
+        firstNaN = firstNaN < 0 ? static_cast<std::int64_t>(i) : firstNaN;
+        continue;
+      }
+      minimum = std::min(minimum, static_cast<double>(buffer[i]));
+      maximum = std::max(maximum, static_cast<double>(buffer[i]));
+      insideVoxels += (below ? buffer[i] <= density : buffer[i] >= density) ? 1 : 0;
+    }
+    EXPECT_EQ(stats.minimum, minimum);
+    EXPECT_EQ(stats.maximum, maximum);
+    EXPECT_EQ(stats.insideVoxels, insideVoxels);
+    ASSERT_EQ(stats.foundNaN, firstNaN >= 0);
+    if (firstNaN >= 0)
+    {
+      const std::int64_t index = (stats.nanVoxel[2] * size[1] + stats.nanVoxel[1]) * size[0] + stats.nanVoxel[0];
+      EXPECT_TRUE(std::isnan(buffer[index]));
     }
   }
 }
