@@ -39,6 +39,7 @@
 #include "itkMesh.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionPhantoms.h"
+#include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkMultiThreaderBase.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
@@ -136,6 +137,45 @@ SurfaceNets(benchmark::State & state, Relaxation relaxation, bool highQuality)
     state.SetIterationTime(Seconds(start));
     triangles = mesh->GetNumberOfCells();
     // The mesh is freed here, outside the timed part (as in meshextraction-compare).
+  }
+  SetCounters(state, n, triangles, threads);
+}
+
+/** Net construction alone, as vtkFlyingEdges3D works: the public stage functions of
+ * the filter (classification, net, faces in physical space) into flat arrays, without
+ * the per-cell objects of an itk::Mesh (22 MiB of TriangleCells for the 222k triangles
+ * of the 256^3 sphere, allocated one by one). The filter's own time is
+ * SurfaceNets/NoRelaxation. */
+void
+NetConstruction(benchmark::State & state)
+{
+  const auto                n = static_cast<unsigned int>(state.range(0));
+  const auto                threads = static_cast<unsigned int>(state.range(1));
+  const ImageType *         image = SphereDistanceMap(n);
+  itk::Matrix<double, 3, 3> M;
+  for (unsigned int r = 0; r < 3; ++r)
+  {
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      M[r][c] = image->GetDirection()[r][c] * image->GetSpacing()[c];
+    }
+  }
+  const ME::Vec3 origin = ME::ToVec3(image->GetOrigin());
+  std::size_t    triangles = 0;
+  for (auto _ : state)
+  {
+    const auto     start = Clock::now();
+    ME::SurfaceNet net;
+    const auto     statistics =
+      ME::ClassifySurfaceCells(image, ME::SurfaceNetsVoxelRange<float>::FromIsoValue(0.0, false), net, threads);
+    ME::BuildSurfaceNet(net, 0.01, threads);
+    std::vector<ME::Vec3>                     points;
+    std::vector<std::array<std::uint32_t, 4>> polygons;
+    unsigned int                              polygonSize = 3;
+    ME::MakeSurfaceNetFaces(net, origin, M, ME::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
+    state.SetIterationTime(Seconds(start));
+    benchmark::DoNotOptimize(statistics.insideVoxels);
+    triangles = polygons.size();
   }
   SetCounters(state, n, triangles, threads);
 }
@@ -281,6 +321,7 @@ main(int argc, char ** argv)
   {
     sizes.push_back(512);
   }
+  RegisterExtraction("SurfaceNets/NetConstruction", sizes, NetConstruction);
   RegisterExtraction(
     "SurfaceNets/NoRelaxation", sizes, [](benchmark::State & s) { SurfaceNets(s, Relaxation::None, false); });
   RegisterExtraction(

@@ -7,6 +7,8 @@
 
 For every size and thread count (1 and all):
   net construction / vtkFlyingEdges3D           issue 5 target: <= 1
+      ("net core": classification, net and faces into flat arrays, as FlyingEdges
+       makes them; "net": the filter to an itk::Mesh, with one TriangleCell per face)
   SNA / vtkFlyingEdges3D
   SNERT / (FlyingEdges3D + windowed sinc)       issue 5 target: <= 2
   HQ / vtkFlyingEdges3D                          issue 6 target: <= 10
@@ -24,6 +26,7 @@ NAME = re.compile(r"^(?P<method>.+?)/size:(?P<size>\d+)/threads:(?P<threads>\d+)
 UNIT = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 
 COLUMNS = [  # (benchmark name, short label)
+    ("SurfaceNets/NetConstruction", "net core"),
     ("SurfaceNets/NoRelaxation", "net"),
     ("SurfaceNets/SNA", "SNA"),
     ("SurfaceNets/SNERT", "SNERT"),
@@ -33,6 +36,7 @@ COLUMNS = [  # (benchmark name, short label)
 ]
 
 RATIOS = [  # (label, numerator, denominator, target)
+    ("core/FE3D", "net core", "FE3D", 1.0),
     ("net/FE3D", "net", "FE3D", 1.0),
     ("SNA/FE3D", "SNA", "FE3D", None),
     ("SNERT/(FE+sinc)", "SNERT", "FE+sinc", 2.0),
