@@ -165,6 +165,10 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
 MeshExtraction_EXPORT std::vector<int>
 ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance = 1e-6);
 
+/** FacesIntersect for faces f and g of `mesh`. */
+MeshExtraction_EXPORT bool
+MeshFacesIntersect(const IndexedTriangleMesh & mesh, std::uint32_t f, std::uint32_t g);
+
 /** Pairs (i < j) of non-degenerate faces that intersect away from their shared
  * vertices and edge, sorted. With `queries`, only pairs that include one of
  * those triangles are sought (e.g. the faces that moved since the last check). */

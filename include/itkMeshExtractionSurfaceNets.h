@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace itk
@@ -160,6 +161,33 @@ MeshExtraction_EXPORT std::vector<Vec3>
                                  const Vec3 &                 origin,
                                  const Matrix<double, 3, 3> & indexToPhysical,
                                  bool                         roundToFloat = false);
+
+/** The self-intersecting face pairs of a SurfaceNet's triangles, found from the net's
+ * structure instead of a tree over all faces: the two triangles of quad q are faces
+ * 2q and 2q+1 of `mesh` (MakeSurfaceNetFaces with a triangulation), whose points are
+ * the nodes in physical space. Every node lies in its own cell, so a quad lies in the
+ * 2x2 block of cells around its voxel edge, at least the nodes' smallest distance to
+ * their cell's faces (m) inside the block's outer faces; two quads whose blocks share no
+ * cell are then at least 2m apart and cannot meet. Only pairs of faces whose quads
+ * share a cell are tested (boxes, then FacesIntersect, as FindSelfIntersections),
+ * each pair once, in parallel over cells. With `changed`, only pairs that include a
+ * changed face are sought.
+ *
+ * Returns false, leaving `pairs` empty, when that argument does not hold for the
+ * coordinates as computed: a node on its cell's face (m = 0) or m smaller than a
+ * bound on the rounding of the physical coordinates (`roundedToFloat`: rounded to
+ * float as written). Callers then use FindSelfIntersections. Otherwise `pairs` is
+ * exactly FindSelfIntersections' result: pairs (i < j) of non-degenerate faces that
+ * intersect away from their shared vertices and edge, sorted. */
+MeshExtraction_EXPORT bool
+FindSurfaceNetSelfIntersections(const SurfaceNet &                                     net,
+                                const IndexedTriangleMesh &                            mesh,
+                                const Vec3 &                                           origin,
+                                const Matrix<double, 3, 3> &                           indexToPhysical,
+                                bool                                                   roundedToFloat,
+                                const std::vector<std::uint32_t> *                     changed,
+                                std::vector<std::pair<std::uint32_t, std::uint32_t>> & pairs,
+                                unsigned int                                           numberOfWorkUnits = 0);
 
 /** Stage 3b of SurfaceNets: where relaxed faces cross each other (two sheets
  * pulled toward one iso-surface, e.g. where the object touches itself), move the

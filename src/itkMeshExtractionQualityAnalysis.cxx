@@ -217,13 +217,7 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAAB
         {
           return;
         }
-        const auto &         t = mesh.triangles[f];
-        const auto &         u = mesh.triangles[g];
-        const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
-        const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
-        const IdentifierType pid[3] = { t[0], t[1], t[2] };
-        const IdentifierType qid[3] = { u[0], u[1], u[2] };
-        if (FacesIntersect(P, pid, Q, qid))
+        if (MeshFacesIntersect(mesh, f, g))
         {
           found[block].emplace_back(std::min(f, g), std::max(f, g));
         }
@@ -233,6 +227,18 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAAB
   return SortedPairs(found);
 }
 } // namespace
+
+bool
+MeshFacesIntersect(const IndexedTriangleMesh & mesh, std::uint32_t f, std::uint32_t g)
+{
+  const auto &         t = mesh.triangles[f];
+  const auto &         u = mesh.triangles[g];
+  const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+  const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
+  const IdentifierType pid[3] = { t[0], t[1], t[2] };
+  const IdentifierType qid[3] = { u[0], u[1], u[2] };
+  return FacesIntersect(P, pid, Q, qid);
+}
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries)

@@ -20,10 +20,15 @@
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 
+#include "itkMeshExtractionPredicates.h"
+#include "itkMeshExtractionTriangleAABBTree.h"
 #include "vnl/vnl_det.h"
+#include "vnl/vnl_inverse.h"
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <ostream>
 
@@ -583,6 +588,216 @@ ToPhysical(const std::vector<Vec3> & index, const Vec3 & origin, const Matrix<do
   return physical;
 }
 
+bool
+FindSurfaceNetSelfIntersections(const SurfaceNet &                                     net,
+                                const IndexedTriangleMesh &                            mesh,
+                                const Vec3 &                                           origin,
+                                const Matrix<double, 3, 3> &                           indexToPhysical,
+                                bool                                                   roundedToFloat,
+                                const std::vector<std::uint32_t> *                     changed,
+                                std::vector<std::pair<std::uint32_t, std::uint32_t>> & pairs,
+                                unsigned int                                           numberOfWorkUnits)
+{
+  pairs.clear();
+  const std::size_t numberOfQuads = net.quads.size();
+  const std::size_t numberOfCells = net.cells.size();
+  if (mesh.triangles.size() != 2 * numberOfQuads || mesh.points.size() != net.positions.size())
+  {
+    return false;
+  }
+  // m: the nodes' smallest distance to a face of their cell (index space).
+  double margin = std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < net.positions.size(); ++i)
+  {
+    const SurfaceCell & c = net.cells[net.nodeCell[i]];
+    const double        corner[3] = { static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z) };
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      margin = std::min(margin, std::min(net.positions[i][k] - corner[k], corner[k] + 1.0 - net.positions[i][k]));
+    }
+  }
+  // Blocks without a common cell are 2m apart in index space, at least 2m * s in
+  // physical space, s >= 1 / |M^-1|_F the smallest singular value of M. A point moves
+  // by at most delta when computed (origin + M index, a few double roundings of
+  // magnitudes up to `bound`) and rounded to float: demand 4 delta < m s.
+  double bound = 0.0;
+  double rowSum = 0.0;
+  for (unsigned int r = 0; r < 3; ++r)
+  {
+    double row = 0.0;
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      row += std::abs(indexToPhysical[r][c]);
+    }
+    rowSum = std::max(rowSum, row);
+    bound = std::max(bound, std::abs(origin[r]));
+  }
+  bound += rowSum * (static_cast<double>(std::max({ net.size[0], net.size[1], net.size[2] })) + 1.0);
+  const double unit = (roundedToFloat ? std::ldexp(1.0, -24) : 0.0) + 8.0 * std::ldexp(1.0, -53);
+  const double delta = std::sqrt(3.0) * unit * bound;
+  if (vnl_det(indexToPhysical.GetVnlMatrix()) == 0.0)
+  {
+    return false;
+  }
+  const vnl_matrix_fixed<double, 3, 3> inverse = vnl_inverse(indexToPhysical.GetVnlMatrix());
+  const double                         smallestStretch = 1.0 / inverse.frobenius_norm();
+  if (!(margin > 0.0) || !(4.0 * delta < margin * smallestStretch))
+  {
+    return false;
+  }
+
+  // The quads of each cell: those with a node in it (a quad's four nodes lie in four
+  // different cells).
+  std::vector<std::uint32_t> start(numberOfCells + 1, 0);
+  for (const auto & q : net.quads)
+  {
+    for (std::uint32_t v : q)
+    {
+      ++start[net.nodeCell[v] + 1];
+    }
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::uint32_t> quadsOfCell(start.back());
+  {
+    std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
+    for (std::uint32_t q = 0; q < numberOfQuads; ++q)
+    {
+      for (std::uint32_t v : net.quads[q])
+      {
+        quadsOfCell[cursor[net.nodeCell[v]]++] = q;
+      }
+    }
+  }
+  std::vector<bool> isChanged;
+  std::vector<bool> activeCell;
+  if (changed != nullptr)
+  {
+    isChanged.assign(mesh.triangles.size(), false);
+    activeCell.assign(numberOfCells, false);
+    for (std::uint32_t f : *changed)
+    {
+      if (f < mesh.triangles.size())
+      {
+        isChanged[f] = true;
+        for (std::uint32_t v : net.quads[f / 2])
+        {
+          activeCell[net.nodeCell[v]] = true;
+        }
+      }
+    }
+  }
+
+  constexpr std::size_t BlockSize = 2048;
+  // Faces that are not degenerate (the others never intersect), decided once per face.
+  std::vector<std::uint8_t> valid(mesh.triangles.size());
+  ParallelForBlocks(
+    mesh.triangles.size(),
+    8 * BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t f = begin; f < end; ++f)
+      {
+        const auto & t = mesh.triangles[f];
+        valid[f] = t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
+                   !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      }
+    },
+    numberOfWorkUnits);
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((numberOfCells + BlockSize - 1) / BlockSize);
+  ParallelForBlocks(
+    numberOfCells,
+    BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t block) {
+      struct Face
+      {
+        std::uint32_t  index;
+        bool           valid;
+        AxisAlignedBox box;
+      };
+      std::vector<Face> faces;
+      auto              quadCells = [&](std::uint32_t q, std::uint32_t cells[4]) {
+        for (unsigned int k = 0; k < 4; ++k)
+        {
+          cells[k] = net.nodeCell[net.quads[q][k]];
+        }
+      };
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        if (changed != nullptr && !activeCell[c])
+        {
+          continue;
+        }
+        faces.clear();
+        for (std::uint32_t k = start[c]; k < start[c + 1]; ++k)
+        {
+          const std::uint32_t q = quadsOfCell[k];
+          for (std::uint32_t f = 2 * q; f < 2 * q + 2; ++f)
+          {
+            const auto & t = mesh.triangles[f];
+            Face         face;
+            face.index = f;
+            face.valid = valid[f] != 0;
+            for (std::uint32_t v : t)
+            {
+              face.box.Add(mesh.points[v]);
+            }
+            faces.push_back(face);
+          }
+        }
+        for (std::size_t i = 0; i < faces.size(); ++i)
+        {
+          if (!faces[i].valid)
+          {
+            continue;
+          }
+          const std::uint32_t f = faces[i].index;
+          std::uint32_t       cellsF[4];
+          quadCells(f / 2, cellsF);
+          for (std::size_t j = i + 1; j < faces.size(); ++j)
+          {
+            const std::uint32_t g = faces[j].index;
+            if (!faces[j].valid || !faces[i].box.Overlaps(faces[j].box))
+            {
+              continue;
+            }
+            if (changed != nullptr && !isChanged[f] && !isChanged[g])
+            {
+              continue;
+            }
+            // Each pair once: in the first cell that the two quads share.
+            std::uint32_t cellsG[4];
+            quadCells(g / 2, cellsG);
+            std::uint32_t firstShared = std::numeric_limits<std::uint32_t>::max();
+            for (std::uint32_t a : cellsF)
+            {
+              for (std::uint32_t b : cellsG)
+              {
+                if (a == b)
+                {
+                  firstShared = std::min(firstShared, a);
+                }
+              }
+            }
+            if (firstShared != c)
+            {
+              continue;
+            }
+            if (MeshFacesIntersect(mesh, f, g))
+            {
+              found[block].emplace_back(std::min(f, g), std::max(f, g));
+            }
+          }
+        }
+      }
+    },
+    numberOfWorkUnits);
+  for (const auto & blockPairs : found)
+  {
+    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return true;
+}
+
 std::size_t
 RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
                                   const std::vector<Vec3> &    initial,
@@ -629,7 +844,12 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
         }
       }
     }
-    const auto pairs = FindSelfIntersections(mesh, round > 0 ? &changed : nullptr);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    if (!FindSurfaceNetSelfIntersections(
+          net, mesh, origin, indexToPhysical, roundToFloat, round > 0 ? &changed : nullptr, pairs))
+    {
+      pairs = FindSelfIntersections(mesh, round > 0 ? &changed : nullptr);
+    }
     if (pairs.empty())
     {
       break;
