@@ -30,6 +30,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+class TriangleAABBTree;
+
 /** \brief The triangles of a SurfaceNet with the twin of every half-edge, for edge
  * swapping. Half-edge 3f + k runs from triangles[f][k] to triangles[f][k+1]; the
  * surface is closed, so every half-edge has a twin.
@@ -83,12 +85,15 @@ constexpr double FoldCosine = -0.5;
 
 /** Undo swaps whose triangles intersect other triangles or fold against a
  * neighbour, until none does; their edges are added to `refused` (kept sorted) so
- * later sweeps do not try them again. Returns the number of swaps undone. */
+ * later sweeps do not try them again. Returns the number of swaps undone. With
+ * `tree` (the same one on every call for one mesh), its shape is built once and
+ * refitted afterwards (TriangleAABBTree::Refit), which PullBackInvalidMoves shares. */
 MeshExtraction_EXPORT std::size_t
                       UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
                                             SurfaceNetTriangles &         mesh,
                                             std::vector<EdgeSwapRecord> & swaps,
-                                            std::vector<std::uint64_t> *  refused = nullptr);
+                                            std::vector<std::uint64_t> *  refused = nullptr,
+                                            TriangleAABBTree *            tree = nullptr);
 
 /** After nodes moved from `start` to `positions` (continuous index), pull back the
  * nodes of triangles that flipped against their orientation at `start`, became
@@ -104,7 +109,8 @@ MeshExtraction_EXPORT std::size_t
                                            const Vec3 &                 origin,
                                            const Matrix<double, 3, 3> & indexToPhysical,
                                            double                       degenerateQAreaTolerance,
-                                           bool                         roundToFloat = false);
+                                           bool                         roundToFloat = false,
+                                           TriangleAABBTree *           tree = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

@@ -156,10 +156,26 @@ public:
         const std::vector<std::uint32_t> *  subset = nullptr,
         const std::vector<AxisAlignedBox> * boxes = nullptr);
 
+  /** Keep the tree's shape but give its primitives new boxes (one per triangle of
+   * the mesh, as in Build) and recompute the nodes' boxes bottom-up: O(n), for
+   * triangles whose vertices moved a little, or that an edge swap exchanged with a
+   * neighbour, since Build. Queries stay exact (every box is tight over its
+   * children); they only slow down if the boxes wander far. Requires a tree built over
+   * all triangles of a mesh with boxes.size() triangles (else throws). */
+  void
+  Refit(const IndexedTriangleMesh & mesh, const std::vector<AxisAlignedBox> & boxes);
+
   bool
   IsEmpty() const
   {
     return m_Nodes.empty();
+  }
+
+  /** Number of triangles the tree holds. */
+  std::size_t
+  GetNumberOfTriangles() const
+  {
+    return m_Triangles.size();
   }
 
   /** Closest point of the mesh to p (over the triangles in the tree). */
@@ -335,6 +351,10 @@ public:
   }
 
 private:
+  /** Node boxes bottom-up from the primitives' boxes. */
+  void
+  FitNodeBoxes();
+
   /** Appends what replaces the node pair p in the traversal: p itself if both are
    * leaves (returns false), nothing if their boxes are apart, else the pairs of
    * children (a node against itself: its two children against themselves and each

@@ -23,6 +23,7 @@
 #include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
+#include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
 
@@ -262,6 +263,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   m_NumberOfSwaps = 0;
   m_NumberOfRoundsPerformed = 0;
   std::vector<std::uint64_t> refused; // edges whose swap had to be undone
+  TriangleAABBTree           tree;    // one shape for every check below, refitted
   // Relax, then undo moves that would break the mesh. A node pulled back is held
   // still in later rounds: it is where the mesh is tight (thin or sharp parts).
   auto relaxAndCheck = [&]() {
@@ -276,7 +278,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
       }
     }
     const std::vector<Vec3> before = m_Net.positions;
-    m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat);
+    m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat, &tree);
     for (std::size_t i = 0; i < start.size(); ++i)
     {
       if (m_Net.positions[i] != before[i])
@@ -290,7 +292,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   {
     const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
     auto                    swaps = SwapEdges(physical, mesh, swap, &refused);
-    UndoIntersectingSwaps(physical, mesh, swaps, &refused);
+    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
     m_NumberOfSwaps += swaps.size();
     relaxAndCheck();
     ++m_NumberOfRoundsPerformed;
@@ -308,7 +310,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   {
     const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
     auto                    swaps = SwapEdges(physical, mesh, delaunay, &refused);
-    UndoIntersectingSwaps(physical, mesh, swaps, &refused);
+    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
     m_NumberOfSwaps += swaps.size();
     if (swaps.empty())
     {

@@ -338,9 +338,19 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
   {
     // Many probes (a sweep of swaps or moves over the whole mesh): the tree against
     // itself visits each overlapping pair once, cheaper than one query per probe.
+    // The faces' own boxes (the tree's may be larger) and validity, once per face
+    // instead of once per pair.
+    std::vector<AxisAlignedBox> boxes(n);
+    std::vector<std::uint8_t>   usable(n);
+    ParallelForBlocks(n, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t f = begin; f < end; ++f)
+      {
+        boxes[f] = TriangleBox(mesh, static_cast<std::uint32_t>(f));
+        usable[f] = probed[f] || valid(static_cast<std::uint32_t>(f));
+      }
+    });
     return IntersectingOverlappingPairs(mesh, tree, [&](std::uint32_t f, std::uint32_t g) {
-      return f < n && g < n && (probed[f] || probed[g]) && TriangleBox(mesh, f).Overlaps(TriangleBox(mesh, g)) &&
-             (probed[f] || valid(f)) && (probed[g] || valid(g));
+      return f < n && g < n && (probed[f] || probed[g]) && usable[f] && usable[g] && boxes[f].Overlaps(boxes[g]);
     });
   }
   constexpr std::size_t                                             BlockSize = 2048;

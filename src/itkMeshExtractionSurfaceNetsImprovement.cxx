@@ -31,6 +31,21 @@ namespace
 {
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 
+/** A tree over all triangles of `mesh` with `boxes`: built the first time, refitted
+ * (same shape, new boxes) when it already holds that many triangles. */
+void
+BuildOrRefit(TriangleAABBTree & tree, const IndexedTriangleMesh & mesh, const std::vector<AxisAlignedBox> & boxes)
+{
+  if (!tree.IsEmpty() && tree.GetNumberOfTriangles() == mesh.triangles.size())
+  {
+    tree.Refit(mesh, boxes);
+  }
+  else
+  {
+    tree.Build(mesh, nullptr, &boxes);
+  }
+}
+
 inline std::uint32_t
 Previous(std::uint32_t h)
 {
@@ -215,7 +230,8 @@ std::size_t
 UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
                       SurfaceNetTriangles &         mesh,
                       std::vector<EdgeSwapRecord> & swaps,
-                      std::vector<std::uint64_t> *  refused)
+                      std::vector<std::uint64_t> *  refused,
+                      TriangleAABBTree *            sharedTree)
 {
   std::size_t         undone = 0;
   IndexedTriangleMesh check;
@@ -242,8 +258,9 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
   {
     return 0;
   }
-  TriangleAABBTree tree;
-  tree.Build(check, nullptr, &boxes);
+  TriangleAABBTree   localTree;
+  TriangleAABBTree & tree = sharedTree != nullptr ? *sharedTree : localTree;
+  BuildOrRefit(tree, check, boxes);
   while (!changed.empty())
   {
     check.triangles = mesh.triangles;
@@ -333,7 +350,8 @@ PullBackInvalidMoves(std::vector<Vec3> &          positions,
                      const Vec3 &                 origin,
                      const Matrix<double, 3, 3> & M,
                      double                       tolerance,
-                     bool                         roundToFloat)
+                     bool                         roundToFloat,
+                     TriangleAABBTree *           sharedTree)
 {
   const auto &            triangles = mesh.triangles;
   const std::size_t       numberOfTriangles = triangles.size();
@@ -370,8 +388,9 @@ PullBackInvalidMoves(std::vector<Vec3> &          positions,
       boxes[f].Add(startPhysical[v]);
     }
   }
-  TriangleAABBTree tree;
-  tree.Build(check, nullptr, &boxes);
+  TriangleAABBTree   localTree;
+  TriangleAABBTree & tree = sharedTree != nullptr ? *sharedTree : localTree;
+  BuildOrRefit(tree, check, boxes);
 
   std::vector<bool>         moved(positions.size(), false);
   std::vector<unsigned int> pulls(positions.size(), 0);
@@ -403,7 +422,7 @@ PullBackInvalidMoves(std::vector<Vec3> &          positions,
       const Vec3 & b = check.points[t[1]];
       const Vec3 & c = check.points[t[2]];
       const Vec3   n = TriangleNormal(a, b, c);
-      if (!(Dot(n, startNormals[f]) > 0.0) || !(MeasureTriangle(a, b, c).qArea > tolerance))
+      if (!(Dot(n, startNormals[f]) > 0.0) || !(TriangleQArea(a, b, c) > tolerance))
       {
         badNodes.insert(badNodes.end(), t.begin(), t.end());
         continue;

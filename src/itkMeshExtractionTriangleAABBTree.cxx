@@ -16,6 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionTriangleAABBTree.h"
+#include "itkMacro.h"
 
 #include <algorithm>
 #include <numeric>
@@ -192,24 +193,6 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
     tasks.push_back({ left, task.begin, middle, task.depth + 1 });
     tasks.push_back({ left + 1, middle, task.end, task.depth + 1 });
   }
-  // Boxes bottom-up: children always come after their parent.
-  for (std::size_t k = m_Nodes.size(); k-- > 0;)
-  {
-    Node & node = m_Nodes[k];
-    node.box = AxisAlignedBox();
-    if (node.count > 0)
-    {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-      {
-        node.box.Add(boxes[order[i]]);
-      }
-    }
-    else
-    {
-      node.box.Add(m_Nodes[node.first].box);
-      node.box.Add(m_Nodes[node.first + 1].box);
-    }
-  }
   std::vector<std::uint32_t>  triangles(n);
   std::vector<AxisAlignedBox> sortedBoxes(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -219,6 +202,47 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
   }
   m_Triangles.swap(triangles);
   m_Boxes.swap(sortedBoxes);
+  this->FitNodeBoxes();
+}
+
+void
+TriangleAABBTree::FitNodeBoxes()
+{
+  // Bottom-up: children always come after their parent.
+  for (std::size_t k = m_Nodes.size(); k-- > 0;)
+  {
+    Node & node = m_Nodes[k];
+    node.box = AxisAlignedBox();
+    if (node.count > 0)
+    {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+      {
+        node.box.Add(m_Boxes[i]);
+      }
+    }
+    else
+    {
+      node.box.Add(m_Nodes[node.first].box);
+      node.box.Add(m_Nodes[node.first + 1].box);
+    }
+  }
+}
+
+void
+TriangleAABBTree::Refit(const IndexedTriangleMesh & mesh, const std::vector<AxisAlignedBox> & boxes)
+{
+  if (boxes.size() != mesh.triangles.size() || m_Triangles.size() != boxes.size())
+  {
+    itkGenericExceptionMacro("TriangleAABBTree::Refit: the tree holds "
+                             << m_Triangles.size() << " triangles, the mesh has " << mesh.triangles.size() << " and "
+                             << boxes.size() << " boxes were given; Refit needs a tree over all of them.");
+  }
+  m_Mesh = &mesh;
+  for (std::size_t i = 0; i < m_Triangles.size(); ++i)
+  {
+    m_Boxes[i] = boxes[m_Triangles[i]];
+  }
+  this->FitNodeBoxes();
 }
 
 TriangleAABBTree::Nearest
