@@ -19,6 +19,7 @@
 #define itkEdgeSwapQuadEdgeMeshFilter_hxx
 
 #include "itkEdgeSwapQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQuadEdgeMeshVertexSmoother.h"
 
 #include <algorithm>
@@ -181,6 +182,8 @@ template <typename TInputMesh, typename TOutputMesh>
 void
 EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
 {
+  // Every stage, including the free functions below, runs on this filter's work units.
+  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_NumberOfSwaps = 0;
   m_NumberOfRefusedSwaps = 0;
   m_NumberOfIterations = 0;

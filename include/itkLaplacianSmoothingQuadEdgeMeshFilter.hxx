@@ -19,6 +19,7 @@
 #define itkLaplacianSmoothingQuadEdgeMeshFilter_hxx
 
 #include "itkLaplacianSmoothingQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionParallel.h"
 
 #include <cmath>
 
@@ -66,6 +67,8 @@ template <typename TInputMesh, typename TOutputMesh>
 void
 LaplacianSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
 {
+  // Every stage, including the free functions below, runs on this filter's work units.
+  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_NumberOfMoves = 0;
   m_NumberOfShortenedMoves = 0;
   m_NumberOfRejectedMoves = 0;

@@ -18,6 +18,7 @@
 #ifndef itkMeshExtractionParallel_h
 #define itkMeshExtractionParallel_h
 
+#include "MeshExtractionExport.h"
 #include "itkMultiThreaderBase.h"
 
 #include <algorithm>
@@ -27,10 +28,40 @@ namespace itk
 {
 namespace MeshExtraction
 {
+/** The number of work units ParallelForBlocks uses when given 0, for the calling
+ * thread: 0 (ITK's global default) unless a ScopedNumberOfWorkUnits is alive. */
+MeshExtraction_EXPORT unsigned int &
+ThreadNumberOfWorkUnits();
+
+/** While alive, ParallelForBlocks calls from this thread that pass no number of work
+ * units use `numberOfWorkUnits`: a filter sets it from its own NumberOfWorkUnits at the
+ * start of GenerateData, so every stage (including the free functions it calls)
+ * honours SetNumberOfWorkUnits(). \ingroup MeshExtraction */
+class ScopedNumberOfWorkUnits
+{
+public:
+  explicit ScopedNumberOfWorkUnits(unsigned int numberOfWorkUnits)
+      : m_Previous(ThreadNumberOfWorkUnits())
+  {
+    ThreadNumberOfWorkUnits() = numberOfWorkUnits;
+  }
+  ~ScopedNumberOfWorkUnits()
+  {
+    ThreadNumberOfWorkUnits() = m_Previous;
+  }
+  ScopedNumberOfWorkUnits(const ScopedNumberOfWorkUnits &) = delete;
+  ScopedNumberOfWorkUnits &
+  operator=(const ScopedNumberOfWorkUnits &) = delete;
+
+private:
+  unsigned int m_Previous;
+};
+
 /** Run f(begin, end, block) over [0, n) cut into blocks of `blockSize`, the
- * blocks spread over ITK's multithreader (numberOfWorkUnits = 0: ITK's global
- * default). Block boundaries depend only on n and blockSize, never on the number
- * of threads, so per-block results combined in block order are deterministic.
+ * blocks spread over ITK's multithreader (numberOfWorkUnits = 0: the calling
+ * thread's ScopedNumberOfWorkUnits, else ITK's global default). Block boundaries
+ * depend only on n and blockSize, never on the number of threads, so per-block
+ * results combined in block order are deterministic.
  * f must not throw. \ingroup MeshExtraction */
 template <typename TFunction>
 void
@@ -46,6 +77,10 @@ ParallelForBlocks(std::size_t n, std::size_t blockSize, TFunction && f, unsigned
   {
     f(std::size_t{ 0 }, n, std::size_t{ 0 });
     return;
+  }
+  if (numberOfWorkUnits == 0)
+  {
+    numberOfWorkUnits = ThreadNumberOfWorkUnits();
   }
   MultiThreaderBase::Pointer threader = MultiThreaderBase::New();
   if (numberOfWorkUnits > 0)

@@ -19,6 +19,7 @@
 #define itkScaleSpaceEdgeDetectionMeshFilter_hxx
 
 #include "itkScaleSpaceEdgeDetectionMeshFilter.h"
+#include "itkMeshExtractionParallel.h"
 
 namespace itk
 {
@@ -51,6 +52,8 @@ template <typename TInputMesh, typename TImage, typename TOutputMesh>
 void
 ScaleSpaceEdgeDetectionMeshFilter<TInputMesh, TImage, TOutputMesh>::GenerateData()
 {
+  // Every stage, including the free functions below, runs on this filter's work units.
+  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_Result = MeshExtraction::ScaleSpaceEdgeDetectionResult();
   const InputMeshType * input = this->GetInput();
   if (input == nullptr)

@@ -19,6 +19,7 @@
 #define itkScaleSpaceEdgeMeshRefinementFilter_hxx
 
 #include "itkScaleSpaceEdgeMeshRefinementFilter.h"
+#include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionDistanceAnalysis.h"
 #include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkTriangleMeshQualityCalculator.h"
@@ -382,6 +383,8 @@ template <typename TInputMesh, typename TImage, typename TOutputMesh>
 void
 ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::GenerateData()
 {
+  // Every stage, including the free functions below, runs on this filter's work units.
+  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_Steps.clear();
   m_NumberOfCycles = 0;
   m_TargetQualityReached = false;

@@ -19,6 +19,7 @@
 #define itkSurfaceNetsImageToMeshFilter_hxx
 
 #include "itkSurfaceNetsImageToMeshFilter.h"
+#include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshExtractionSurfaceNetsImprovement.h"
@@ -466,6 +467,8 @@ template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateData()
 {
+  // Every stage, including the free functions below, runs on this filter's work units.
+  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   if (this->GetInput() == nullptr)
   {
     itkExceptionMacro("No input image: call SetInput() first.");

@@ -19,6 +19,7 @@
 #define itkTaubinSmoothingQuadEdgeMeshFilter_hxx
 
 #include "itkTaubinSmoothingQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionParallel.h"
 
 #include <cmath>
 
@@ -81,6 +82,8 @@ template <typename TInputMesh, typename TOutputMesh>
 void
 TaubinSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
 {
+  // Every stage, including the free functions below, runs on this filter's work units.
+  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_NumberOfMoves = 0;
   m_NumberOfShortenedMoves = 0;
   m_NumberOfRejectedMoves = 0;

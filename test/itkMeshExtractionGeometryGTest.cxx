@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+#include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionPredicates.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
@@ -24,7 +25,11 @@
 
 #include <algorithm>
 #include <numeric>
+#include <chrono>
+#include <mutex>
 #include <random>
+#include <set>
+#include <thread>
 
 using namespace itk::MeshExtraction;
 using MeshExtractionTest::MakeIcosphere;
@@ -332,4 +337,42 @@ TEST(TriangleAABBTree, RefitAfterMovesAndSwapsAnswersLikeAFreshBuild)
   std::iota(half.begin(), half.end(), 0u);
   part.Build(mesh, &half);
   EXPECT_THROW(part.Refit(mesh, boxesOf(mesh)), itk::ExceptionObject);
+}
+
+TEST(ParallelForBlocks, ScopedNumberOfWorkUnitsBoundsTheThreadsAndIsRestored)
+{
+  // A filter's SetNumberOfWorkUnits(1) must reach the free functions it calls.
+  auto threadsUsed = []() {
+    std::mutex                mutex;
+    std::set<std::thread::id> ids;
+    std::vector<std::size_t>  covered(4096, 0);
+    ParallelForBlocks(covered.size(), 16, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        ++covered[i];
+      }
+      // Long enough that a second thread, if there is one, takes some blocks.
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      std::lock_guard<std::mutex> lock(mutex);
+      ids.insert(std::this_thread::get_id());
+    });
+    EXPECT_EQ(std::count(covered.begin(), covered.end(), 1u), static_cast<std::ptrdiff_t>(covered.size()));
+    return ids.size();
+  };
+  EXPECT_EQ(ThreadNumberOfWorkUnits(), 0u);
+  {
+    const ScopedNumberOfWorkUnits one(1);
+    EXPECT_EQ(ThreadNumberOfWorkUnits(), 1u);
+    EXPECT_EQ(threadsUsed(), 1u);
+    {
+      const ScopedNumberOfWorkUnits two(2);
+      EXPECT_EQ(ThreadNumberOfWorkUnits(), 2u);
+      if (itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads() > 1)
+      {
+        EXPECT_GT(threadsUsed(), 1u);
+      }
+    }
+    EXPECT_EQ(ThreadNumberOfWorkUnits(), 1u);
+  }
+  EXPECT_EQ(ThreadNumberOfWorkUnits(), 0u);
 }
