@@ -28,6 +28,8 @@
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
 
+#include <atomic>
+
 namespace itk
 {
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -439,16 +441,31 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
     if constexpr (std::is_same<CellsContainer,
                                VectorContainer<typename CellsContainer::ElementIdentifier, CellType *>>::value)
     {
-      // As for the points. The mesh owns the cells (itk::Mesh's default,
-      // CellsAllocatedDynamicallyCellByCell) from the start, so an allocation failure
-      // midway frees those made.
+      // As for the points, and in parallel: one heap object per cell is most of the
+      // time of an itk::Mesh output. The mesh owns the cells (itk::Mesh's default,
+      // CellsAllocatedDynamicallyCellByCell) from the start, so if an allocation fails
+      // the cells made are freed with the mesh (the others are null).
       auto container = CellsContainer::New();
       output->SetCells(container);
       auto & vector = container->CastToSTLContainer();
-      vector.reserve(polygons.size());
-      for (std::size_t f = 0; f < polygons.size(); ++f)
+      vector.assign(polygons.size(), nullptr);
+      std::atomic<bool> failed{ false };
+      MeshExtraction::ParallelForBlocks(polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
+        try
+        {
+          for (std::size_t f = begin; f < end; ++f)
+          {
+            vector[f] = makeCell(f);
+          }
+        }
+        catch (...)
+        {
+          failed = true;
+        }
+      });
+      if (failed)
       {
-        vector.push_back(makeCell(f));
+        itkExceptionMacro("Out of memory while making the " << polygons.size() << " cells of the output mesh.");
       }
     }
     else

@@ -707,83 +707,81 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
     numberOfCells,
     BlockSize,
     [&](std::size_t begin, std::size_t end, std::size_t block) {
-      struct Face
+      // The quads of the cell, each with its cells and its two faces' boxes.
+      struct Quad
       {
         std::uint32_t  index;
-        bool           valid;
-        AxisAlignedBox box;
+        std::uint32_t  cells[4];
+        AxisAlignedBox box[2];
       };
-      std::vector<Face> faces;
-      auto              quadCells = [&](std::uint32_t q, std::uint32_t cells[4]) {
-        for (unsigned int k = 0; k < 4; ++k)
-        {
-          cells[k] = net.nodeCell[net.quads[q][k]];
-        }
-      };
+      std::vector<Quad> quads;
       for (std::size_t c = begin; c < end; ++c)
       {
         if (changed != nullptr && !activeCell[c])
         {
           continue;
         }
-        faces.clear();
+        quads.clear();
         for (std::uint32_t k = start[c]; k < start[c + 1]; ++k)
         {
-          const std::uint32_t q = quadsOfCell[k];
-          for (std::uint32_t f = 2 * q; f < 2 * q + 2; ++f)
+          Quad quad;
+          quad.index = quadsOfCell[k];
+          for (unsigned int v = 0; v < 4; ++v)
           {
-            const auto & t = mesh.triangles[f];
-            Face         face;
-            face.index = f;
-            face.valid = valid[f] != 0;
-            for (std::uint32_t v : t)
-            {
-              face.box.Add(mesh.points[v]);
-            }
-            faces.push_back(face);
+            quad.cells[v] = net.nodeCell[net.quads[quad.index][v]];
           }
+          for (unsigned int s = 0; s < 2; ++s)
+          {
+            for (std::uint32_t v : mesh.triangles[2 * quad.index + s])
+            {
+              quad.box[s].Add(mesh.points[v]);
+            }
+          }
+          quads.push_back(quad);
         }
-        for (std::size_t i = 0; i < faces.size(); ++i)
-        {
-          if (!faces[i].valid)
+        auto test = [&](const Quad & a, unsigned int s, const Quad & b, unsigned int t) {
+          const std::uint32_t f = 2 * a.index + s;
+          const std::uint32_t g = 2 * b.index + t;
+          if (!valid[f] || !valid[g] || !a.box[s].Overlaps(b.box[t]) ||
+              (changed != nullptr && !isChanged[f] && !isChanged[g]))
           {
-            continue;
+            return;
           }
-          const std::uint32_t f = faces[i].index;
-          std::uint32_t       cellsF[4];
-          quadCells(f / 2, cellsF);
-          for (std::size_t j = i + 1; j < faces.size(); ++j)
+          if (MeshFacesIntersect(mesh, f, g))
           {
-            const std::uint32_t g = faces[j].index;
-            if (!faces[j].valid || !faces[i].box.Overlaps(faces[j].box))
-            {
-              continue;
-            }
-            if (changed != nullptr && !isChanged[f] && !isChanged[g])
-            {
-              continue;
-            }
-            // Each pair once: in the first cell that the two quads share.
-            std::uint32_t cellsG[4];
-            quadCells(g / 2, cellsG);
+            found[block].emplace_back(std::min(f, g), std::max(f, g));
+          }
+        };
+        for (std::size_t i = 0; i < quads.size(); ++i)
+        {
+          const Quad & a = quads[i];
+          // The two faces of one quad: once, in the quad's first cell.
+          if (std::min({ a.cells[0], a.cells[1], a.cells[2], a.cells[3] }) == c)
+          {
+            test(a, 0, a, 1);
+          }
+          for (std::size_t j = i + 1; j < quads.size(); ++j)
+          {
+            const Quad & b = quads[j];
+            // Each pair of quads once: in the first cell they share.
             std::uint32_t firstShared = std::numeric_limits<std::uint32_t>::max();
-            for (std::uint32_t a : cellsF)
+            for (std::uint32_t x : a.cells)
             {
-              for (std::uint32_t b : cellsG)
+              for (std::uint32_t y : b.cells)
               {
-                if (a == b)
-                {
-                  firstShared = std::min(firstShared, a);
-                }
+                firstShared = x == y ? std::min(firstShared, x) : firstShared;
               }
             }
             if (firstShared != c)
             {
               continue;
             }
-            if (MeshFacesIntersect(mesh, f, g))
+            for (unsigned int s = 0; s < 2; ++s)
             {
-              found[block].emplace_back(std::min(f, g), std::max(f, g));
+              for (unsigned int t = 0; t < 2; ++t)
+              {
+                test(a, s, b, t);
+              }
             }
           }
         }
