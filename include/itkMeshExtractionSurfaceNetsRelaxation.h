@@ -404,10 +404,23 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   // gradients, read once. Inside its cell a node's value, gradient and slope are then
   // plain arithmetic on these (trilinear interpolation, and the trilinear field's
   // exact derivative along n), not 9 interpolations from the image per iteration.
+  // Stored as the trilinear fields' coefficients, f(u, v, w) = c0 + c1 u + c2 v + c3 w
+  // + c4 uv + c5 uw + c6 vw + c7 uvw in the cell's local coordinates: a value and its
+  // three partial derivatives then cost 16 multiply-adds.
   struct CellCache
   {
     float value[8];
-    float gradient[8][3];
+    float gradient[3][8];
+  };
+  auto toCoefficients = [](const double f[8], float c[8]) {
+    c[0] = static_cast<float>(f[0]);
+    c[1] = static_cast<float>(f[1] - f[0]);
+    c[2] = static_cast<float>(f[2] - f[0]);
+    c[3] = static_cast<float>(f[4] - f[0]);
+    c[4] = static_cast<float>(f[3] - f[2] - f[1] + f[0]);
+    c[5] = static_cast<float>(f[5] - f[4] - f[1] + f[0]);
+    c[6] = static_cast<float>(f[6] - f[4] - f[2] + f[0]);
+    c[7] = static_cast<float>(f[7] - f[6] - f[5] + f[4] - f[3] + f[2] + f[1] - f[0]);
   };
   std::vector<CellCache> cache;
   if (sampler != nullptr && useGradient)
@@ -427,40 +440,43 @@ RelaxSurfaceNet(SurfaceNet &                            net,
           // neighbours), read straight from the buffer when all are inside the image.
           const bool interior =
             c.x >= 1 && c.y >= 1 && c.z >= 1 && c.x + 2 < size[0] && c.y + 2 < size[1] && c.z + 2 < size[2];
+          double corner[8];
+          double cornerGradient[3][8] = {};
           if (interior)
           {
             const auto * b = sampler->GetBufferPointer() + (c.z * sz + c.y * sy + c.x);
             for (unsigned int k = 0; k < 8; ++k)
             {
               const auto * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy + (k & 1);
-              cache[i].value[k] = static_cast<float>(static_cast<double>(v[0]));
+              corner[k] = static_cast<double>(v[0]);
               if (parameters.centralDifferences)
               {
-                cache[i].gradient[k][0] =
-                  static_cast<float>(0.5 * (static_cast<double>(v[1]) - static_cast<double>(v[-1])));
-                cache[i].gradient[k][1] =
-                  static_cast<float>(0.5 * (static_cast<double>(v[sy]) - static_cast<double>(v[-sy])));
-                cache[i].gradient[k][2] =
-                  static_cast<float>(0.5 * (static_cast<double>(v[sz]) - static_cast<double>(v[-sz])));
+                cornerGradient[0][k] = 0.5 * (static_cast<double>(v[1]) - static_cast<double>(v[-1]));
+                cornerGradient[1][k] = 0.5 * (static_cast<double>(v[sy]) - static_cast<double>(v[-sy]));
+                cornerGradient[2][k] = 0.5 * (static_cast<double>(v[sz]) - static_cast<double>(v[-sz]));
               }
             }
-            continue;
           }
-          for (unsigned int k = 0; k < 8; ++k)
+          else
           {
-            const std::int64_t x = c.x + (k & 1);
-            const std::int64_t y = c.y + ((k >> 1) & 1);
-            const std::int64_t z = c.z + ((k >> 2) & 1);
-            cache[i].value[k] = static_cast<float>(sampler->Value(x, y, z));
-            if (parameters.centralDifferences)
+            for (unsigned int k = 0; k < 8; ++k)
             {
-              cache[i].gradient[k][0] =
-                static_cast<float>(0.5 * (sampler->Value(x + 1, y, z) - sampler->Value(x - 1, y, z)));
-              cache[i].gradient[k][1] =
-                static_cast<float>(0.5 * (sampler->Value(x, y + 1, z) - sampler->Value(x, y - 1, z)));
-              cache[i].gradient[k][2] =
-                static_cast<float>(0.5 * (sampler->Value(x, y, z + 1) - sampler->Value(x, y, z - 1)));
+              const std::int64_t x = c.x + (k & 1);
+              const std::int64_t y = c.y + ((k >> 1) & 1);
+              const std::int64_t z = c.z + ((k >> 2) & 1);
+              corner[k] = sampler->Value(x, y, z);
+              if (parameters.centralDifferences)
+              {
+                cornerGradient[0][k] = 0.5 * (sampler->Value(x + 1, y, z) - sampler->Value(x - 1, y, z));
+                cornerGradient[1][k] = 0.5 * (sampler->Value(x, y + 1, z) - sampler->Value(x, y - 1, z));
+                cornerGradient[2][k] = 0.5 * (sampler->Value(x, y, z + 1) - sampler->Value(x, y, z - 1));
+              }
             }
+          }
+          toCoefficients(corner, cache[i].value);
+          for (unsigned int d = 0; d < 3; ++d)
+          {
+            toCoefficients(cornerGradient[d], cache[i].gradient[d]);
           }
         }
       },
@@ -479,23 +495,21 @@ RelaxSurfaceNet(SurfaceNet &                            net,
       if (u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0)
       {
         const CellCache & cc = cache[node];
-        const double      weight[8] = {
-               (1 - u) * (1 - v) * (1 - w), u * (1 - v) * (1 - w), (1 - u) * v * (1 - w), u * v * (1 - w),
-               (1 - u) * (1 - v) * w,       u * (1 - v) * w,       (1 - u) * v * w,       u * v * w
+        const double      uv = u * v;
+        const double      uw = u * w;
+        const double      vw = v * w;
+        const double      uvw = uv * w;
+        auto              field = [&](const float * k) {
+          return k[0] + k[1] * u + k[2] * v + k[3] * w + k[4] * uv + k[5] * uw + k[6] * vw + k[7] * uvw;
         };
-        double value = 0.0;
-        Vec3   G = MakeVec3(0, 0, 0);
-        for (unsigned int k = 0; k < 8; ++k)
+        const float * f = cc.value;
+        const double  value = field(f);
+        Vec3          G;
+        if (parameters.centralDifferences)
         {
-          value += weight[k] * cc.value[k];
-          if (parameters.centralDifferences)
-          {
-            G[0] += weight[k] * cc.gradient[k][0];
-            G[1] += weight[k] * cc.gradient[k][1];
-            G[2] += weight[k] * cc.gradient[k][2];
-          }
+          G = MakeVec3(field(cc.gradient[0]), field(cc.gradient[1]), field(cc.gradient[2]));
         }
-        if (!parameters.centralDifferences)
+        else
         {
           G = gradient(p, node);
         }
@@ -508,13 +522,9 @@ RelaxSurfaceNet(SurfaceNet &                            net,
         }
         n = g * (1.0 / magnitude);
         // Exact derivative of the trilinear field (index space) along n.
-        const float * f = cc.value;
-        const double  du = (1 - v) * (1 - w) * (f[1] - f[0]) + v * (1 - w) * (f[3] - f[2]) +
-                          (1 - v) * w * (f[5] - f[4]) + v * w * (f[7] - f[6]);
-        const double dv = (1 - u) * (1 - w) * (f[2] - f[0]) + u * (1 - w) * (f[3] - f[1]) +
-                          (1 - u) * w * (f[6] - f[4]) + u * w * (f[7] - f[5]);
-        const double dw = (1 - u) * (1 - v) * (f[4] - f[0]) + u * (1 - v) * (f[5] - f[1]) +
-                          (1 - u) * v * (f[6] - f[2]) + u * v * (f[7] - f[3]);
+        const double du = f[1] + f[4] * v + f[5] * w + f[7] * vw;
+        const double dv = f[2] + f[4] * u + f[6] * w + f[7] * uw;
+        const double dw = f[3] + f[5] * u + f[6] * v + f[7] * uv;
         const Vec3   direction = Minv * n; // index displacement per mm along n
         const double slope = du * direction[0] + dv * direction[1] + dw * direction[2];
         if (!(std::abs(slope) > 1e-3 * magnitude))
