@@ -56,8 +56,7 @@ template <typename TPixel>
 struct SurfaceNetsVoxelRange
 {
   TPixel low;
-  TPixel high;
-  bool   empty{ false }; ///< no value of the pixel type is inside
+  TPixel high; ///< high < low: no voxel is inside (Never)
 
   bool
   operator()(TPixel v) const
@@ -142,9 +141,7 @@ struct SurfaceNetsVoxelRange
   Never()
   {
     using Limits = std::numeric_limits<TPixel>;
-    SurfaceNetsVoxelRange r{ Limits::max(), Limits::lowest() };
-    r.empty = true;
-    return r;
+    return SurfaceNetsVoxelRange{ Limits::max(), Limits::lowest() };
   }
 };
 
