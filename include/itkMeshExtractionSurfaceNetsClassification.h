@@ -222,11 +222,13 @@ ClassifySurfaceNetsRow(const TPixel * row,
  * N-1 along each axis, so that voxels outside the image count as outside and
  * objects touching the image border are closed. `inside(pixel)` classifies a voxel
  * (a NaN voxel is never inside, and reported). The image is read one z-slab per
- * work unit, one slice at a time, in branch-free row passes the compiler
- * vectorizes; a row of cells is only visited between the first and last inside
- * voxel of its four voxel rows, eight cells at a time. Memory beyond the image is
- * two slices of flags per work unit plus the surface cells. Cells come out sorted
- * by (z, y, x) whatever the number of threads.
+ * work unit, one slice at a time, in row passes without branches
+ * (ClassifySurfaceNetsRow: vectorized by the compiler, or SSE2 for float rows); a
+ * row of cells is only visited between the first and last inside voxel of its four
+ * voxel rows (found 8 flags at a time), each cell from the 4-bit codes of its two
+ * voxel columns. Memory beyond the image is two slices of flags per work unit plus
+ * the surface cells. Cells come out sorted by (z, y, x) whatever the number of
+ * threads.
  * \ingroup MeshExtraction */
 template <typename TImage, typename TInside>
 SurfaceNetsClassificationStatistics

@@ -101,7 +101,7 @@ MeshExtraction_EXPORT std::size_t
  * neighbour where they did not at `start`, or intersect another triangle: halve
  * their move once, then reset it, until no such triangle is left. Checks run on the
  * physical positions that will be written (`roundToFloat`). Returns the number of
- * nodes pulled back. */
+ * nodes pulled back. `tree`: as for UndoIntersectingSwaps (built once, then refitted). */
 MeshExtraction_EXPORT std::size_t
                       PullBackInvalidMoves(std::vector<Vec3> &          positions,
                                            const std::vector<Vec3> &    start,
