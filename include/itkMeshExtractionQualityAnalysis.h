@@ -169,6 +169,15 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
 MeshExtraction_EXPORT bool
 MeshFacesIntersect(const IndexedTriangleMesh & mesh, std::uint32_t f, std::uint32_t g);
 
+/** Face f of `mesh` has three distinct vertices and is not exactly degenerate: the
+ * faces the self-intersection searches consider. */
+MeshExtraction_EXPORT bool
+MeshFaceIsProper(const IndexedTriangleMesh & mesh, std::uint32_t f);
+
+/** The face pairs that the blocks of a parallel search found, in one sorted list. */
+MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
+                      SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> & found);
+
 /** Pairs (i < j) of non-degenerate faces that intersect away from their shared
  * vertices and edge, sorted. With `queries`, only pairs that include one of
  * those triangles are sought (e.g. the faces that moved since the last check). */

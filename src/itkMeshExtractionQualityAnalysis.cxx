@@ -183,9 +183,6 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
   return result;
 }
 
-namespace
-{
-/** The pairs the threads found, in one sorted list. */
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> & found)
 {
@@ -198,6 +195,16 @@ SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t
   return pairs;
 }
 
+bool
+MeshFaceIsProper(const IndexedTriangleMesh & mesh, std::uint32_t f)
+{
+  const auto & t = mesh.triangles[f];
+  return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
+         !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+}
+
+namespace
+{
 /** The pairs of triangles whose boxes overlap in `tree` (the tree against itself, each
  * pair once, the first levels' node pairs shared among the threads), that `accept`
  * lets through and that intersect (FacesIntersect), sorted. */
@@ -249,9 +256,7 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   valid.reserve(n);
   for (std::uint32_t f = 0; f < n; ++f)
   {
-    const auto & t = mesh.triangles[f];
-    if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
-        !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]))
+    if (MeshFaceIsProper(mesh, f))
     {
       valid.push_back(f);
       isValid[f] = true;
@@ -317,12 +322,8 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
                       const std::vector<std::uint32_t> & queries,
                       const TriangleAABBTree &           tree)
 {
-  const std::size_t n = mesh.triangles.size();
-  auto              valid = [&mesh](std::uint32_t f) {
-    const auto & t = mesh.triangles[f];
-    return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
-           !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
-  };
+  const std::size_t          n = mesh.triangles.size();
+  auto                       valid = [&mesh](std::uint32_t f) { return MeshFaceIsProper(mesh, f); };
   std::vector<std::uint32_t> probes;
   std::vector<bool>          probed(n, false);
   for (std::uint32_t f : queries)

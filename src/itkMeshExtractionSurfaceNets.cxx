@@ -20,7 +20,6 @@
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 
-#include "itkMeshExtractionPredicates.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "vnl/vnl_det.h"
 #include "vnl/vnl_inverse.h"
@@ -481,19 +480,7 @@ MakeSurfaceNetFaces(const SurfaceNet &                          net,
                     std::vector<std::array<std::uint32_t, 4>> & polygons,
                     unsigned int &                              polygonSize)
 {
-  points.resize(net.positions.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    Vec3 p = origin;
-    for (unsigned int r = 0; r < 3; ++r)
-    {
-      for (unsigned int c = 0; c < 3; ++c)
-      {
-        p[r] += indexToPhysical[r][c] * net.positions[i][c];
-      }
-    }
-    points[i] = p;
-  }
+  points = ToPhysical(net.positions, origin, indexToPhysical);
   // A reflecting direction matrix turns counter-clockwise into clockwise.
   const bool reflect = vnl_det(indexToPhysical.GetVnlMatrix()) < 0.0;
   polygons.clear();
@@ -696,9 +683,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
     [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t f = begin; f < end; ++f)
       {
-        const auto & t = mesh.triangles[f];
-        valid[f] = t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
-                   !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+        valid[f] = MeshFaceIsProper(mesh, static_cast<std::uint32_t>(f));
       }
     },
     numberOfWorkUnits);
@@ -788,11 +773,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
       }
     },
     numberOfWorkUnits);
-  for (const auto & blockPairs : found)
-  {
-    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
-  }
-  std::sort(pairs.begin(), pairs.end());
+  pairs = SortedPairs(found);
   return true;
 }
 
