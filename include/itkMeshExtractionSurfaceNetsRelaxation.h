@@ -383,8 +383,11 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   const Mat3                 M(matrix);
   const Mat3                 Minv(inverse);
   const Mat3                 MinvT(Matrix<double, 3, 3>(inverse.GetTranspose()));
-  double                     smallestSpacing = std::numeric_limits<double>::max();
-  double                     cellDiagonal = 0.0;
+  // W = M^-1 M^-T maps an index-space gradient G to t = M^-1 g, the index displacement
+  // along the physical gradient g = M^-T G, with |g|^2 = G.t.
+  const Mat3 W(inverse * Matrix<double, 3, 3>(inverse.GetTranspose()));
+  double     smallestSpacing = std::numeric_limits<double>::max();
+  double     cellDiagonal = 0.0;
   for (unsigned int c = 0; c < 3; ++c)
   {
     const double length = std::sqrt(M(0, c) * M(0, c) + M(1, c) * M(1, c) + M(2, c) * M(2, c));
@@ -553,6 +556,63 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     return std::clamp((parameters.isoValue - value) / slope, -cellDiagonal, cellDiagonal);
   };
 
+  // The combined step (eq. 3.5-3.6) of a node inside its own cell, from the cache,
+  // without normalising the gradient. With n = g/|g|, the projection on the tangent
+  // plane is M^-1 (M a - n n.(M a)) = a - t (G.a)/|g|^2, since n.(M a) = (M^T g).a/|g|
+  // = G.a/|g|; and the step to the iso-surface, M^-1 (n d) with d = (iso - I)/slope and
+  // slope = dI.(M^-1 n) = dI.t/|g|, is t (iso - I)/(dI.t). The same vectors as the
+  // general path below, with no square root and two divisions.
+  auto cachedStep = [&](const Vec3 & p, std::size_t node, const Vec3 & a, Vec3 & d) -> bool {
+    if (cache.empty())
+    {
+      return false;
+    }
+    const SurfaceCell & c = net.cells[net.nodeCell[node]];
+    const double        u = p[0] - c.x;
+    const double        v = p[1] - c.y;
+    const double        w = p[2] - c.z;
+    if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0))
+    {
+      return false;
+    }
+    const CellCache & cc = cache[node];
+    const double      uv = u * v;
+    const double      uw = u * w;
+    const double      vw = v * w;
+    const double      uvw = uv * w;
+    auto              field = [&](const float * k) {
+      return k[0] + k[1] * u + k[2] * v + k[3] * w + k[4] * uv + k[5] * uw + k[6] * vw + k[7] * uvw;
+    };
+    const float * f = cc.value;
+    const Vec3    G = parameters.centralDifferences
+                        ? MakeVec3(field(cc.gradient[0]), field(cc.gradient[1]), field(cc.gradient[2]))
+                        : gradient(p, static_cast<std::uint32_t>(node));
+    const Vec3    t = W * G;
+    const double  g2 = Dot(G, t);
+    d = useAveraging ? a * parameters.smoothingWeight : MakeVec3(0, 0, 0);
+    if (!(g2 > 0.0))
+    {
+      return true; // no gradient: no projection, no step (as n = 0 below)
+    }
+    double coefficient = useAveraging ? -Dot(G, a) / g2 * parameters.smoothingWeight : 0.0;
+    // Exact derivative of the trilinear field (index space).
+    const double du = f[1] + f[4] * v + f[5] * w + f[7] * vw;
+    const double dv = f[2] + f[4] * u + f[6] * w + f[7] * uw;
+    const double dw = f[3] + f[5] * u + f[6] * v + f[7] * uv;
+    const double slope = du * t[0] + dv * t[1] + dw * t[2]; // |g| times the slope along n
+    if (std::abs(slope) > 1e-3 * g2)
+    {
+      double q = (parameters.isoValue - field(f)) / slope; // the distance is q |g|
+      if (q * q * g2 > cellDiagonal * cellDiagonal)
+      {
+        q = std::copysign(cellDiagonal / std::sqrt(g2), q);
+      }
+      coefficient += q * parameters.projectionWeight;
+    }
+    d += t * coefficient;
+    return true;
+  };
+
   for (unsigned int iteration = 0; iteration < parameters.maximumNumberOfIterations; ++iteration)
   {
     ParallelForBlocks(
@@ -575,6 +635,10 @@ RelaxSurfaceNet(SurfaceNet &                            net,
           if (!useGradient)
           {
             moved += ConstrainToBox(p, a * parameters.smoothingWeight, net.boxLower[i], net.boxUpper[i]);
+          }
+          else if (Vec3 step; !parameters.sequential && cachedStep(p, i, a, step))
+          {
+            moved += ConstrainToBox(p, step, net.boxLower[i], net.boxUpper[i]);
           }
           else
           {
