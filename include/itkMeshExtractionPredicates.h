@@ -74,6 +74,17 @@ TrianglesIntersect(const Vec3 P[3], const Vec3 Q[3]);
 MeshExtraction_EXPORT bool
 FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], const IdentifierType qid[3]);
 
+/** A certificate that the faces around a vertex v meet only at v and along their
+ * common edges. `ring` holds the fan's other k vertices in cyclic order, face i
+ * being (v, ring[i], ring[(i + 1) % k]). True if, seen along one direction (the
+ * fan's summed normal N), every face turns counter-clockwise and the faces go
+ * around v exactly once: the fan then projects one-to-one onto a plane normal to N,
+ * and a common point of two faces would project onto v or onto their common edge.
+ * The signs det[N, a - v, b - v] are decided by a floating-point filter (Orient3D's
+ * static bound); false means "not certified", not "intersecting". */
+MeshExtraction_EXPORT bool
+FanIsEmbeddedStar(const Vec3 & v, const Vec3 * ring, unsigned int k);
+
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -160,6 +160,84 @@ AddDet3(ExactSum & s, double sign, const Vec3 & u, const Vec3 & v, const Vec3 & 
   s.AddProduct(-sign, u[2], v[1], w[0]);
 }
 
+/** Orient3D(a, b, c, x) for several x: the products of (b - a) x (c - a), with their
+ * magnitudes for the static filter, are computed once. Exact signs (x outside the
+ * filter's certainty goes to the exact evaluation). */
+class PlaneOrientation
+{
+public:
+  PlaneOrientation(const Vec3 & a, const Vec3 & b, const Vec3 & c)
+      : m_A(a)
+      , m_B(b)
+      , m_C(c)
+  {
+    const Vec3   u = b - a;
+    const Vec3   v = c - a;
+    const double m0 = u[1] * v[2];
+    const double m1 = u[2] * v[1];
+    const double m2 = u[2] * v[0];
+    const double m3 = u[0] * v[2];
+    const double m4 = u[0] * v[1];
+    const double m5 = u[1] * v[0];
+    m_Cross = MakeVec3(m0 - m1, m2 - m3, m4 - m5);
+    m_Magnitude = MakeVec3(std::abs(m0) + std::abs(m1), std::abs(m2) + std::abs(m3), std::abs(m4) + std::abs(m5));
+  }
+
+  int
+  operator()(const Vec3 & d) const
+  {
+    const Vec3   w = d - m_A;
+    const double det = w[0] * m_Cross[0] + w[1] * m_Cross[1] + w[2] * m_Cross[2];
+    const double permanent =
+      std::abs(w[0]) * m_Magnitude[0] + std::abs(w[1]) * m_Magnitude[1] + std::abs(w[2]) * m_Magnitude[2];
+    const double bound = Orient3DBound * permanent;
+    if (det > bound || -det > bound)
+    {
+      return SignOf(det);
+    }
+    return Orient3DUncertain(m_A, m_B, m_C, d);
+  }
+
+private:
+  static int
+  Orient3DUncertain(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d);
+
+  Vec3 m_A;
+  Vec3 m_B;
+  Vec3 m_C;
+  Vec3 m_Cross;
+  Vec3 m_Magnitude;
+};
+
+int
+PlaneOrientation::Orient3DUncertain(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
+{
+  // When the differences are exact (common: points on a grid, or close to each
+  // other), det[u, v, w] of those doubles is the exact value: 6 triple products.
+  Vec3 uu;
+  Vec3 vv;
+  Vec3 ww;
+  bool exactDifferences = true;
+  for (unsigned int k = 0; k < 3 && exactDifferences; ++k)
+  {
+    double t0;
+    double t1;
+    double t2;
+    TwoDiff(b[k], a[k], uu[k], t0);
+    TwoDiff(c[k], a[k], vv[k], t1);
+    TwoDiff(d[k], a[k], ww[k], t2);
+    exactDifferences = t0 == 0.0 && t1 == 0.0 && t2 == 0.0;
+  }
+  if (exactDifferences)
+  {
+    ExactSum s;
+    AddDet3(s, 1.0, uu, vv, ww);
+    return s.Sign();
+  }
+  // det[b-a, c-a, d-a] = det[b,c,d] - det[a,c,d] - det[b,a,d] - det[b,c,a].
+  return Orient3DExact(a, b, c, d);
+}
+
 // ---------------------------------------------------------------------------
 // 2-D helpers on the projection of a plane onto a coordinate plane.
 // ---------------------------------------------------------------------------
@@ -299,48 +377,7 @@ Orient2D(const double a[2], const double b[2], const double c[2])
 int
 Orient3D(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
 {
-  const Vec3   u = b - a;
-  const Vec3   v = c - a;
-  const Vec3   w = d - a;
-  const double m0 = u[1] * v[2];
-  const double m1 = u[2] * v[1];
-  const double m2 = u[2] * v[0];
-  const double m3 = u[0] * v[2];
-  const double m4 = u[0] * v[1];
-  const double m5 = u[1] * v[0];
-  const double det = w[0] * (m0 - m1) + w[1] * (m2 - m3) + w[2] * (m4 - m5);
-  const double permanent = std::abs(w[0]) * (std::abs(m0) + std::abs(m1)) +
-                           std::abs(w[1]) * (std::abs(m2) + std::abs(m3)) +
-                           std::abs(w[2]) * (std::abs(m4) + std::abs(m5));
-  const double bound = Orient3DBound * permanent;
-  if (det > bound || -det > bound)
-  {
-    return SignOf(det);
-  }
-  // When the differences are exact (common: points on a grid, or close to each
-  // other), det[u, v, w] of those doubles is the exact value: 6 triple products.
-  Vec3 uu;
-  Vec3 vv;
-  Vec3 ww;
-  bool exactDifferences = true;
-  for (unsigned int k = 0; k < 3 && exactDifferences; ++k)
-  {
-    double t0;
-    double t1;
-    double t2;
-    TwoDiff(b[k], a[k], uu[k], t0);
-    TwoDiff(c[k], a[k], vv[k], t1);
-    TwoDiff(d[k], a[k], ww[k], t2);
-    exactDifferences = t0 == 0.0 && t1 == 0.0 && t2 == 0.0;
-  }
-  ExactSum s;
-  if (exactDifferences)
-  {
-    AddDet3(s, 1.0, uu, vv, ww);
-    return s.Sign();
-  }
-  // det[b-a, c-a, d-a] = det[b,c,d] - det[a,c,d] - det[b,a,d] - det[b,c,a].
-  return Orient3DExact(a, b, c, d);
+  return PlaneOrientation(a, b, c)(d);
 }
 
 int
@@ -364,8 +401,9 @@ IsTriangleDegenerateExact(const Vec3 & a, const Vec3 & b, const Vec3 & c)
 bool
 SegmentIntersectsTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & p, const Vec3 & q, const Vec3 & r)
 {
-  const int oa = Orient3D(p, q, r, a);
-  const int ob = Orient3D(p, q, r, b);
+  const PlaneOrientation plane(p, q, r);
+  const int              oa = plane(a);
+  const int              ob = plane(b);
   if (oa * ob > 0)
   {
     return false;
@@ -403,11 +441,12 @@ TrianglesIntersect(const Vec3 P[3], const Vec3 Q[3])
   // Separated by the plane of either triangle: no common point.
   for (unsigned int pass = 0; pass < 2; ++pass)
   {
-    const Vec3 * A = pass == 0 ? P : Q;
-    const Vec3 * B = pass == 0 ? Q : P;
-    const int    s0 = Orient3D(A[0], A[1], A[2], B[0]);
-    const int    s1 = Orient3D(A[0], A[1], A[2], B[1]);
-    const int    s2 = Orient3D(A[0], A[1], A[2], B[2]);
+    const Vec3 *           A = pass == 0 ? P : Q;
+    const Vec3 *           B = pass == 0 ? Q : P;
+    const PlaneOrientation plane(A[0], A[1], A[2]);
+    const int              s0 = plane(B[0]);
+    const int              s1 = plane(B[1]);
+    const int              s2 = plane(B[2]);
     if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))
     {
       return false;
@@ -504,14 +543,16 @@ FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], co
   const Vec3 &       c = Q[(qi + 1) % 3];
   const Vec3 &       d = Q[(qi + 2) % 3];
   // Either face strictly on one side of the other's plane (but for v): only v is common.
-  const int oc = Orient3D(v, a, b, c);
-  const int od = Orient3D(v, a, b, d);
+  const PlaneOrientation planeP(v, a, b);
+  const int              oc = planeP(c);
+  const int              od = planeP(d);
   if (oc != 0 && oc == od)
   {
     return false;
   }
-  const int oa = Orient3D(v, c, d, a);
-  const int ob = Orient3D(v, c, d, b);
+  const PlaneOrientation planeQ(v, c, d);
+  const int              oa = planeQ(a);
+  const int              ob = planeQ(b);
   if (oa != 0 && oa == ob)
   {
     return false;
@@ -519,6 +560,73 @@ FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], co
   return SegmentIntersectsTriangle(a, b, v, c, d) || SegmentIntersectsTriangle(c, d, v, a, b) ||
          EdgeEntersFaceAtSharedVertex(v, a, c, d) || EdgeEntersFaceAtSharedVertex(v, b, c, d) ||
          EdgeEntersFaceAtSharedVertex(v, c, a, b) || EdgeEntersFaceAtSharedVertex(v, d, a, b);
+}
+
+bool
+FanIsEmbeddedStar(const Vec3 & v, const Vec3 * ring, unsigned int k)
+{
+  constexpr unsigned int MaximumValence = 32;
+  if (k < 3 || k > MaximumValence)
+  {
+    return false;
+  }
+  // The products of a x b, and their magnitudes, for det[N, a, b] = N . (a x b) and
+  // its static filter bound: a and b are rounded differences and N is exact, as in
+  // Orient3D's filter (w . (u x v) of three rounded differences).
+  struct Products
+  {
+    Vec3 cross;
+    Vec3 magnitude;
+  };
+  auto products = [](const Vec3 & a, const Vec3 & b) {
+    const double m0 = a[1] * b[2];
+    const double m1 = a[2] * b[1];
+    const double m2 = a[2] * b[0];
+    const double m3 = a[0] * b[2];
+    const double m4 = a[0] * b[1];
+    const double m5 = a[1] * b[0];
+    return Products{ MakeVec3(m0 - m1, m2 - m3, m4 - m5),
+                     MakeVec3(std::abs(m0) + std::abs(m1), std::abs(m2) + std::abs(m3), std::abs(m4) + std::abs(m5)) };
+  };
+  Vec3     spoke[MaximumValence];
+  Products face[MaximumValence];
+  for (unsigned int i = 0; i < k; ++i)
+  {
+    spoke[i] = ring[i] - v;
+  }
+  Vec3 N = MakeVec3(0.0, 0.0, 0.0);
+  for (unsigned int i = 0; i < k; ++i)
+  {
+    face[i] = products(spoke[i], spoke[(i + 1) % k]);
+    N += face[i].cross;
+  }
+  // +1 / -1 if det[N, a, b] is certainly positive / negative, 0 if the filter cannot tell.
+  auto sign = [&N](const Products & p) {
+    const double det = N[0] * p.cross[0] + N[1] * p.cross[1] + N[2] * p.cross[2];
+    const double bound = Orient3DBound * (std::abs(N[0]) * p.magnitude[0] + std::abs(N[1]) * p.magnitude[1] +
+                                          std::abs(N[2]) * p.magnitude[2]);
+    return det > bound ? 1 : (-det > bound ? -1 : 0);
+  };
+  // Every face turns counter-clockwise about N (so no face is degenerate or seen
+  // edge-on, and each covers an angle below pi)...
+  for (unsigned int i = 0; i < k; ++i)
+  {
+    if (sign(face[i]) != 1)
+    {
+      return false;
+    }
+  }
+  // ... and the angles add up to 2 pi, not a multiple: the first spoke lies in no
+  // closed angle of faces 2 .. k-2 (faces 1 and k-1 are next to it). Going around
+  // twice would take the sweep across it.
+  for (unsigned int i = 2; i + 1 < k; ++i)
+  {
+    if (sign(products(spoke[i], spoke[0])) != -1 && sign(products(spoke[0], spoke[i + 1])) != -1)
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 } // namespace MeshExtraction
