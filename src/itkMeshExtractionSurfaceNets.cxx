@@ -18,6 +18,7 @@
 #include "itkMeshExtractionSurfaceNets.h"
 #include "itkSurfaceNetsImageToMeshFilterEnums.h"
 #include "itkMeshExtractionParallel.h"
+#include "itkMeshExtractionPredicates.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 
 #include "itkMeshExtractionTriangleAABBTree.h"
@@ -635,13 +636,17 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
 
   // The quads of each cell: those with a node in it (a quad's four nodes lie in four
   // different cells).
-  std::vector<std::uint32_t> start(numberOfCells + 1, 0);
-  for (const auto & q : net.quads)
+  // The cells of each quad, ascending.
+  std::vector<std::array<std::uint32_t, 4>> quadCells(numberOfQuads);
+  std::vector<std::uint32_t>                start(numberOfCells + 1, 0);
+  for (std::size_t q = 0; q < numberOfQuads; ++q)
   {
-    for (std::uint32_t v : q)
+    for (unsigned int v = 0; v < 4; ++v)
     {
-      ++start[net.nodeCell[v] + 1];
+      quadCells[q][v] = net.nodeCell[net.quads[q][v]];
+      ++start[quadCells[q][v] + 1];
     }
+    std::sort(quadCells[q].begin(), quadCells[q].end());
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<std::uint32_t> quadsOfCell(start.back());
@@ -649,9 +654,9 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
     std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
     for (std::uint32_t q = 0; q < numberOfQuads; ++q)
     {
-      for (std::uint32_t v : net.quads[q])
+      for (std::uint32_t c : quadCells[q])
       {
-        quadsOfCell[cursor[net.nodeCell[v]]++] = q;
+        quadsOfCell[cursor[c]++] = q;
       }
     }
   }
@@ -687,17 +692,110 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
       }
     },
     numberOfWorkUnits);
+  // Nodes whose fan of faces is certified (FanIsEmbeddedStar): two faces that meet
+  // at such a node have no other common point, or only their common edge. On a
+  // relaxed net nearly every node is one, and the exact tests are left to the
+  // pairs that share no certified node.
+  std::vector<std::uint8_t> starNode(net.positions.size(), 0);
+  ParallelForBlocks(
+    numberOfCells,
+    BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      struct Corner
+      {
+        std::uint32_t node; // a node of the cell
+        std::uint32_t next; // the face's vertex after it
+        std::uint32_t last; // and the one after that
+      };
+      std::vector<Corner>        corners;
+      std::vector<std::uint8_t>  used;
+      std::vector<std::uint32_t> ring;
+      std::vector<Vec3>          ringPoints;
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        if (changed != nullptr && !activeCell[c])
+        {
+          continue;
+        }
+        // The faces at the cell's nodes: every quad with a node in the cell.
+        const std::uint32_t firstNode = net.cells[c].firstNode;
+        const std::uint32_t endNode =
+          c + 1 < numberOfCells ? net.cells[c + 1].firstNode : static_cast<std::uint32_t>(net.positions.size());
+        corners.clear();
+        for (std::uint32_t k = start[c]; k < start[c + 1]; ++k)
+        {
+          for (unsigned int s = 0; s < 2; ++s)
+          {
+            const auto & face = mesh.triangles[2 * quadsOfCell[k] + s];
+            for (unsigned int j = 0; j < 3; ++j)
+            {
+              if (face[j] >= firstNode && face[j] < endNode)
+              {
+                corners.push_back({ face[j], face[(j + 1) % 3], face[(j + 2) % 3] });
+              }
+            }
+          }
+        }
+        if (!std::all_of(corners.begin(), corners.end(), [&](const Corner & a) { return a.node == corners[0].node; }))
+        {
+          std::sort(corners.begin(), corners.end(), [](const Corner & a, const Corner & b) { return a.node < b.node; });
+        }
+        for (std::size_t first = 0; first < corners.size();)
+        {
+          std::size_t last = first;
+          while (last < corners.size() && corners[last].node == corners[first].node)
+          {
+            ++last;
+          }
+          // The fan's ring in order: each face (v, x, y) is followed by the one that
+          // starts at y (the faces are consistently oriented). It must close after
+          // visiting every face once, through distinct vertices.
+          const std::size_t k = last - first;
+          used.assign(k, 0);
+          ring.clear();
+          std::uint32_t at = corners[first].next;
+          bool          closed = true;
+          for (std::size_t step = 0; step < k && closed; ++step)
+          {
+            std::size_t e = 0;
+            while (e < k && (used[e] || corners[first + e].next != at))
+            {
+              ++e;
+            }
+            closed = e < k && std::find(ring.begin(), ring.end(), at) == ring.end();
+            if (closed)
+            {
+              used[e] = 1;
+              ring.push_back(at);
+              at = corners[first + e].last;
+            }
+          }
+          if (closed && at == ring.front())
+          {
+            ringPoints.resize(k);
+            for (std::size_t i = 0; i < k; ++i)
+            {
+              ringPoints[i] = mesh.points[ring[i]];
+            }
+            starNode[corners[first].node] =
+              FanIsEmbeddedStar(mesh.points[corners[first].node], ringPoints.data(), static_cast<unsigned int>(k));
+          }
+          first = last;
+        }
+      }
+    },
+    numberOfWorkUnits);
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((numberOfCells + BlockSize - 1) / BlockSize);
   ParallelForBlocks(
     numberOfCells,
     BlockSize,
     [&](std::size_t begin, std::size_t end, std::size_t block) {
-      // The quads of the cell, each with its cells and its two faces' boxes.
+      // The quads of the cell, each with its cells and its two faces' vertices.
       struct Quad
       {
-        std::uint32_t  index;
-        std::uint32_t  cells[4];
-        AxisAlignedBox box[2];
+        std::uint32_t index;
+        std::uint32_t cells[4];
+        std::uint32_t faces[2][3];
       };
       std::vector<Quad> quads;
       for (std::size_t c = begin; c < end; ++c)
@@ -711,26 +809,51 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
         {
           Quad quad;
           quad.index = quadsOfCell[k];
-          for (unsigned int v = 0; v < 4; ++v)
-          {
-            quad.cells[v] = net.nodeCell[net.quads[quad.index][v]];
-          }
+          std::copy(quadCells[quad.index].begin(), quadCells[quad.index].end(), quad.cells);
           for (unsigned int s = 0; s < 2; ++s)
           {
-            for (std::uint32_t v : mesh.triangles[2 * quad.index + s])
-            {
-              quad.box[s].Add(mesh.points[v]);
-            }
+            const auto & face = mesh.triangles[2 * quad.index + s];
+            std::copy(face.begin(), face.end(), quad.faces[s]);
           }
           quads.push_back(quad);
         }
         auto test = [&](const Quad & a, unsigned int s, const Quad & b, unsigned int t) {
           const std::uint32_t f = 2 * a.index + s;
           const std::uint32_t g = 2 * b.index + t;
-          if (!valid[f] || !valid[g] || !a.box[s].Overlaps(b.box[t]) ||
-              (changed != nullptr && !isChanged[f] && !isChanged[g]))
+          if (!valid[f] || !valid[g] || (changed != nullptr && !isChanged[f] && !isChanged[g]))
           {
             return;
+          }
+          // Faces that meet at a certified node do not intersect. Faces with a common
+          // vertex always have overlapping boxes; the others are tested only if
+          // their boxes overlap.
+          const std::uint32_t * p = a.faces[s];
+          const std::uint32_t * q = b.faces[t];
+          bool                  common = false;
+          for (unsigned int i = 0; i < 3; ++i)
+          {
+            if (p[i] == q[0] || p[i] == q[1] || p[i] == q[2])
+            {
+              if (starNode[p[i]])
+              {
+                return;
+              }
+              common = true;
+            }
+          }
+          if (!common)
+          {
+            AxisAlignedBox boxP;
+            AxisAlignedBox boxQ;
+            for (unsigned int i = 0; i < 3; ++i)
+            {
+              boxP.Add(mesh.points[p[i]]);
+              boxQ.Add(mesh.points[q[i]]);
+            }
+            if (!boxP.Overlaps(boxQ))
+            {
+              return;
+            }
           }
           if (MeshFacesIntersect(mesh, f, g))
           {
@@ -741,23 +864,34 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
         {
           const Quad & a = quads[i];
           // The two faces of one quad: once, in the quad's first cell.
-          if (std::min({ a.cells[0], a.cells[1], a.cells[2], a.cells[3] }) == c)
+          if (a.cells[0] == c)
           {
             test(a, 0, a, 1);
           }
           for (std::size_t j = i + 1; j < quads.size(); ++j)
           {
             const Quad & b = quads[j];
-            // Each pair of quads once: in the first cell they share.
-            std::uint32_t firstShared = std::numeric_limits<std::uint32_t>::max();
-            for (std::uint32_t x : a.cells)
+            // Each pair of quads once: in the first cell they share (both lists
+            // are ascending and contain c, so no common cell may come before c).
+            bool         firstShared = true;
+            unsigned int x = 0;
+            unsigned int y = 0;
+            while (firstShared && a.cells[x] < c && b.cells[y] < c)
             {
-              for (std::uint32_t y : b.cells)
+              if (a.cells[x] == b.cells[y])
               {
-                firstShared = x == y ? std::min(firstShared, x) : firstShared;
+                firstShared = false;
+              }
+              else if (a.cells[x] < b.cells[y])
+              {
+                ++x;
+              }
+              else
+              {
+                ++y;
               }
             }
-            if (firstShared != c)
+            if (!firstShared)
             {
               continue;
             }

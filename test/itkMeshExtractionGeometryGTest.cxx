@@ -255,6 +255,129 @@ TEST(ExactPredicates, MeshNeighboursOnlyIntersectAwayFromSharedElements)
   EXPECT_TRUE(FacesIntersect(P, pid, P, pid));
 }
 
+namespace
+{
+/** The fan (v, ring[i], ring[i+1]) around v, spokes at the given angles (radians,
+ * about the z axis) with the given radii and heights. */
+std::vector<Vec3>
+FanRing(const std::vector<double> & angles, const std::vector<double> & radii, const std::vector<double> & heights)
+{
+  std::vector<Vec3> ring;
+  for (std::size_t i = 0; i < angles.size(); ++i)
+  {
+    ring.push_back(MakeVec3(radii[i] * std::cos(angles[i]), radii[i] * std::sin(angles[i]), heights[i]));
+  }
+  return ring;
+}
+
+/** Does any pair of the fan's faces intersect beyond their common vertex or edge? */
+bool
+FanSelfIntersects(const Vec3 & v, const std::vector<Vec3> & ring)
+{
+  const std::size_t k = ring.size();
+  for (std::size_t i = 0; i < k; ++i)
+  {
+    for (std::size_t j = i + 1; j < k; ++j)
+    {
+      const Vec3                P[3] = { v, ring[i], ring[(i + 1) % k] };
+      const Vec3                Q[3] = { v, ring[j], ring[(j + 1) % k] };
+      const itk::IdentifierType pid[3] = { 0, 1 + i, 1 + (i + 1) % k };
+      const itk::IdentifierType qid[3] = { 0, 1 + j, 1 + (j + 1) % k };
+      if (FacesIntersect(P, pid, Q, qid))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+} // namespace
+
+TEST(ExactPredicates, FanCertificateHoldsOnlyForFansThatGoAroundOnceWithoutFolds)
+{
+  const Vec3 v = MakeVec3(0, 0, 0);
+  auto       regular = [](unsigned int k, double turns) {
+    std::vector<double> angles;
+    for (unsigned int i = 0; i < k; ++i)
+    {
+      angles.push_back(2.0 * itk::Math::pi * turns * i / k);
+    }
+    return angles;
+  };
+  const std::vector<double> ones(9, 1.0);
+  const std::vector<double> flat(9, 0.0);
+  // A flat hexagon, and a cone: embedded stars.
+  EXPECT_TRUE(FanIsEmbeddedStar(v, FanRing(regular(6, 1), ones, flat).data(), 6));
+  EXPECT_TRUE(FanIsEmbeddedStar(v, FanRing(regular(5, 1), ones, std::vector<double>(9, -0.7)).data(), 5));
+  // The same hexagon seen from below (clockwise): still a star about the other normal.
+  auto reversed = FanRing(regular(6, 1), ones, flat);
+  std::reverse(reversed.begin(), reversed.end());
+  EXPECT_TRUE(FanIsEmbeddedStar(v, reversed.data(), 6));
+  // One spoke pulled across its neighbour: a folded face.
+  auto folded = regular(6, 1);
+  folded[2] = folded[3] + 0.3;
+  EXPECT_FALSE(FanIsEmbeddedStar(v, FanRing(folded, ones, flat).data(), 6));
+  EXPECT_TRUE(FanSelfIntersects(v, FanRing(folded, ones, flat)));
+  // Nine faces of 80 degrees: around twice, every face counter-clockwise.
+  const std::vector<double> twiceRadii = { 1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7, 1.8 };
+  EXPECT_FALSE(FanIsEmbeddedStar(v, FanRing(regular(9, 2), twiceRadii, flat).data(), 9));
+  EXPECT_TRUE(FanSelfIntersects(v, FanRing(regular(9, 2), twiceRadii, flat)));
+  // A degenerate face (two spokes in one direction).
+  auto                degenerate = regular(6, 1);
+  std::vector<double> radii(ones);
+  degenerate[3] = degenerate[2];
+  radii[3] = 2.0;
+  EXPECT_FALSE(FanIsEmbeddedStar(v, FanRing(degenerate, radii, flat).data(), 6));
+  // Too few spokes.
+  EXPECT_FALSE(FanIsEmbeddedStar(v, FanRing(regular(2, 1), ones, flat).data(), 2));
+
+  // Random fans, from well formed to wildly bent and folded: a certified fan never
+  // self-intersects, and every fan whose angles increase around a gently bent cone is
+  // certified (the certificate is not vacuous).
+  std::mt19937_64                        rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int                                    certified = 0;
+  int                                    intersecting = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const unsigned int  k = 3 + static_cast<unsigned int>(unit(rng) * 8);
+    const int           kind = trial % 4; // 0: gentle; 1: jittered angles; 2: steep; 3: random directions
+    std::vector<double> angles = regular(k, 1);
+    std::vector<double> r(k);
+    std::vector<double> h(k);
+    for (unsigned int i = 0; i < k; ++i)
+    {
+      r[i] = 0.2 + unit(rng);
+      h[i] = (kind == 2 ? 3.0 : 0.3) * (unit(rng) - 0.5);
+      if (kind == 1)
+      {
+        angles[i] += 2.5 * (unit(rng) - 0.5) * 2.0 * itk::Math::pi / k;
+      }
+      else if (kind == 3)
+      {
+        angles[i] = 2.0 * itk::Math::pi * unit(rng);
+      }
+      else
+      {
+        angles[i] += 0.4 * (unit(rng) - 0.5) * 2.0 * itk::Math::pi / k;
+      }
+    }
+    const std::vector<Vec3> ring = FanRing(angles, r, h);
+    const Vec3              apex = MakeVec3(0.0, 0.0, 0.1 * (unit(rng) - 0.5));
+    const bool              star = FanIsEmbeddedStar(apex, ring.data(), k);
+    const bool              intersects = FanSelfIntersects(apex, ring);
+    certified += star ? 1 : 0;
+    intersecting += intersects ? 1 : 0;
+    ASSERT_FALSE(star && intersects) << "trial " << trial << ": a certified fan self-intersects";
+    if (kind == 0)
+    {
+      ASSERT_TRUE(star) << "trial " << trial << ": a gently bent fan is not certified";
+    }
+  }
+  EXPECT_GT(certified, 5000);
+  EXPECT_GT(intersecting, 1000); // the random fans include many folded ones
+}
+
 TEST(TriangleAABBTree, NearestTriangleMatchesBruteForce)
 {
   const IndexedTriangleMesh mesh = MakeIcosphere(3, 5.0);
