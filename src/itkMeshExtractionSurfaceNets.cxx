@@ -680,18 +680,6 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
   }
 
   constexpr std::size_t BlockSize = 2048;
-  // Faces that are not degenerate (the others never intersect), decided once per face.
-  std::vector<std::uint8_t> valid(mesh.triangles.size());
-  ParallelForBlocks(
-    mesh.triangles.size(),
-    8 * BlockSize,
-    [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t f = begin; f < end; ++f)
-      {
-        valid[f] = MeshFaceIsProper(mesh, static_cast<std::uint32_t>(f));
-      }
-    },
-    numberOfWorkUnits);
   // Nodes whose fan of faces is certified (FanIsEmbeddedStar): two faces that meet
   // at such a node have no other common point, or only their common edge. On a
   // relaxed net nearly every node is one, and the exact tests are left to the
@@ -782,6 +770,21 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
           }
           first = last;
         }
+      }
+    },
+    numberOfWorkUnits);
+  // Faces that are not degenerate (the others never intersect), decided once per face:
+  // a face at a certified node is not (the certificate found it turning strictly).
+  std::vector<std::uint8_t> valid(mesh.triangles.size());
+  ParallelForBlocks(
+    mesh.triangles.size(),
+    8 * BlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t f = begin; f < end; ++f)
+      {
+        const auto & t = mesh.triangles[f];
+        valid[f] =
+          starNode[t[0]] || starNode[t[1]] || starNode[t[2]] || MeshFaceIsProper(mesh, static_cast<std::uint32_t>(f));
       }
     },
     numberOfWorkUnits);
