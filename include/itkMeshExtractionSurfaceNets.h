@@ -196,14 +196,18 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
  * cell centres and sheet centres) is free of intersections, so this ends with an
  * intersection-free net. Intersections are found with the exact test of
  * TriangleMeshQualityCalculator on the physical positions that will be written
- * (rounded to float with `roundToFloat`). Returns the number of nodes moved back. */
+ * (rounded to float with `roundToFloat`). Returns the number of nodes moved back.
+ * With `faces`, the triangles of the final net as MakeSurfaceNetFaces makes them
+ * (split by `split`, which must not be KeepQuads), so that they need not be made
+ * again; left empty when no faces of the final positions were made. */
 MeshExtraction_EXPORT std::size_t
-                      RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
-                                                        const std::vector<Vec3> &    initial,
-                                                        const Vec3 &                 origin,
-                                                        const Matrix<double, 3, 3> & indexToPhysical,
-                                                        QuadSplit                    split,
-                                                        bool                         roundToFloat = false);
+                      RemoveSurfaceNetSelfIntersections(SurfaceNet &                                net,
+                                                        const std::vector<Vec3> &                   initial,
+                                                        const Vec3 &                                origin,
+                                                        const Matrix<double, 3, 3> &                indexToPhysical,
+                                                        QuadSplit                                   split,
+                                                        bool                                        roundToFloat = false,
+                                                        std::vector<std::array<std::uint32_t, 4>> * faces = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

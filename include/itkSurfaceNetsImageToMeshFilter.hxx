@@ -520,6 +520,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   MeshExtraction::Vec3 first;
   this->GetGeometry(M, first);
   m_NumberOfNodesMovedBack = 0;
+  // The faces (stage 4): those the self-intersection check made of the final
+  // positions, or made here.
+  std::vector<std::array<std::uint32_t, 4>> polygons;
+  unsigned int                              polygonSize = 3;
   if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
   {
     m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(
@@ -528,14 +532,15 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
       first,
       M,
       this->GetQuadSplit(),
-      std::is_same<typename OutputMeshType::PointType::ValueType, float>::value); // 3b
+      std::is_same<typename OutputMeshType::PointType::ValueType, float>::value,
+      &polygons); // 3b
   }
   this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
-
-  std::vector<MeshExtraction::Vec3>         points;
-  std::vector<std::array<std::uint32_t, 4>> polygons;
-  unsigned int                              polygonSize = 3;
-  MeshExtraction::MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize); // 4
+  if (polygons.empty())
+  {
+    std::vector<MeshExtraction::Vec3> points;
+    MeshExtraction::MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize); // 4
+  }
   m_NumberOfSwaps = 0;
   m_NumberOfRoundsPerformed = 0;
   if (m_HighQuality)

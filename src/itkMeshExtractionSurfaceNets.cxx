@@ -915,13 +915,18 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
 }
 
 std::size_t
-RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
-                                  const std::vector<Vec3> &    initial,
-                                  const Vec3 &                 origin,
-                                  const Matrix<double, 3, 3> & indexToPhysical,
-                                  QuadSplit                    split,
-                                  bool                         roundToFloat)
+RemoveSurfaceNetSelfIntersections(SurfaceNet &                                net,
+                                  const std::vector<Vec3> &                   initial,
+                                  const Vec3 &                                origin,
+                                  const Matrix<double, 3, 3> &                indexToPhysical,
+                                  QuadSplit                                   split,
+                                  bool                                        roundToFloat,
+                                  std::vector<std::array<std::uint32_t, 4>> * faces)
 {
+  if (faces != nullptr)
+  {
+    faces->clear();
+  }
   std::vector<bool>                         moved(net.positions.size(), false);
   std::vector<bool>                         movedLastRound(net.positions.size(), false);
   std::vector<unsigned int>                 pulls(net.positions.size(), 0);
@@ -941,7 +946,7 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
                         points,
                         polygons,
                         polygonSize);
-    mesh.points = ToPhysical(net.positions, origin, indexToPhysical, roundToFloat);
+    mesh.points = roundToFloat ? ToPhysical(net.positions, origin, indexToPhysical, true) : std::move(points);
     mesh.triangles.resize(polygons.size());
     for (std::size_t f = 0; f < polygons.size(); ++f)
     {
@@ -968,6 +973,10 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                 net,
     }
     if (pairs.empty())
     {
+      if (faces != nullptr && split != QuadSplit::KeepQuads)
+      {
+        *faces = std::move(polygons); // the faces of the final positions
+      }
       break;
     }
     std::fill(movedLastRound.begin(), movedLastRound.end(), false);
