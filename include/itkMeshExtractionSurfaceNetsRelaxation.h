@@ -413,10 +413,15 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   // Stored as the trilinear fields' coefficients, f(u, v, w) = c0 + c1 u + c2 v + c3 w
   // + c4 uv + c5 uw + c6 vw + c7 uvw in the cell's local coordinates: a value and its
   // three partial derivatives then cost 16 multiply-adds.
+  // With the node's box and its cell's corner, so that an iteration reads one
+  // record per node (besides the positions) instead of several arrays.
   struct CellCache
   {
-    float value[8];
-    float gradient[3][8];
+    float  value[8];
+    float  gradient[3][8];
+    Vec3   lower;
+    Vec3   upper;
+    double corner[3];
   };
   auto toCoefficients = [](const double f[8], float c[8]) {
     c[0] = static_cast<float>(f[0]);
@@ -479,6 +484,11 @@ RelaxSurfaceNet(SurfaceNet &                            net,
               }
             }
           }
+          cache[i].lower = net.boxLower[i];
+          cache[i].upper = net.boxUpper[i];
+          cache[i].corner[0] = c.x;
+          cache[i].corner[1] = c.y;
+          cache[i].corner[2] = c.z;
           toCoefficients(corner, cache[i].value);
           for (unsigned int d = 0; d < 3; ++d)
           {
@@ -570,22 +580,21 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     {
       return false;
     }
-    const SurfaceCell & c = net.cells[net.nodeCell[node]];
-    const double        u = p[0] - c.x;
-    const double        v = p[1] - c.y;
-    const double        w = p[2] - c.z;
+    const CellCache & cc = cache[node];
+    const double      u = p[0] - cc.corner[0];
+    const double      v = p[1] - cc.corner[1];
+    const double      w = p[2] - cc.corner[2];
     if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0))
     {
       return false;
     }
-    const CellCache & cc = cache[node];
-    const double      uv = u * v;
-    const double      uw = u * w;
-    const double      vw = v * w;
-    const double      uvw = uv * w;
-    const float *     f = cc.value;
-    double            value;
-    Vec3              G;
+    const double  uv = u * v;
+    const double  uw = u * w;
+    const double  vw = v * w;
+    const double  uvw = uv * w;
+    const float * f = cc.value;
+    double        value;
+    Vec3          G;
 #if defined(__SSE2__)
     // The value and the three gradient fields at once, in single precision (the
     // coefficients' own precision): four 8-term dot products with the basis
@@ -667,7 +676,7 @@ RelaxSurfaceNet(SurfaceNet &                            net,
           }
           else if (Vec3 step; !parameters.sequential && cachedStep(p, i, a, step))
           {
-            moved += ConstrainToBox(p, step, net.boxLower[i], net.boxUpper[i]);
+            moved += ConstrainToBox(p, step, cache[i].lower, cache[i].upper);
           }
           else
           {
