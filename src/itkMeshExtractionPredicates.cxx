@@ -160,6 +160,38 @@ AddDet3(ExactSum & s, double sign, const Vec3 & u, const Vec3 & v, const Vec3 & 
   s.AddProduct(-sign, u[2], v[1], w[0]);
 }
 
+/** u x v with the magnitudes of its products, for the static filter of w . (u x v)
+ * (Shewchuk's orient3d bound, which holds when u, v and w are rounded differences of
+ * doubles, or exact). */
+struct FilteredCross
+{
+  Vec3 cross;
+  Vec3 magnitude;
+
+  FilteredCross() = default;
+  FilteredCross(const Vec3 & u, const Vec3 & v)
+  {
+    const double m0 = u[1] * v[2];
+    const double m1 = u[2] * v[1];
+    const double m2 = u[2] * v[0];
+    const double m3 = u[0] * v[2];
+    const double m4 = u[0] * v[1];
+    const double m5 = u[1] * v[0];
+    cross = MakeVec3(m0 - m1, m2 - m3, m4 - m5);
+    magnitude = MakeVec3(std::abs(m0) + std::abs(m1), std::abs(m2) + std::abs(m3), std::abs(m4) + std::abs(m5));
+  }
+
+  /** The sign of w . (u x v) if the filter is certain of it, else 0. */
+  int
+  Sign(const Vec3 & w) const
+  {
+    const double det = w[0] * cross[0] + w[1] * cross[1] + w[2] * cross[2];
+    const double bound =
+      Orient3DBound * (std::abs(w[0]) * magnitude[0] + std::abs(w[1]) * magnitude[1] + std::abs(w[2]) * magnitude[2]);
+    return det > bound ? 1 : (-det > bound ? -1 : 0);
+  }
+};
+
 /** Orient3D(a, b, c, x) for several x: the products of (b - a) x (c - a), with their
  * magnitudes for the static filter, are computed once. Exact signs (x outside the
  * filter's certainty goes to the exact evaluation). */
@@ -170,43 +202,24 @@ public:
       : m_A(a)
       , m_B(b)
       , m_C(c)
-  {
-    const Vec3   u = b - a;
-    const Vec3   v = c - a;
-    const double m0 = u[1] * v[2];
-    const double m1 = u[2] * v[1];
-    const double m2 = u[2] * v[0];
-    const double m3 = u[0] * v[2];
-    const double m4 = u[0] * v[1];
-    const double m5 = u[1] * v[0];
-    m_Cross = MakeVec3(m0 - m1, m2 - m3, m4 - m5);
-    m_Magnitude = MakeVec3(std::abs(m0) + std::abs(m1), std::abs(m2) + std::abs(m3), std::abs(m4) + std::abs(m5));
-  }
+      , m_Products(b - a, c - a)
+  {}
 
   int
   operator()(const Vec3 & d) const
   {
-    const Vec3   w = d - m_A;
-    const double det = w[0] * m_Cross[0] + w[1] * m_Cross[1] + w[2] * m_Cross[2];
-    const double permanent =
-      std::abs(w[0]) * m_Magnitude[0] + std::abs(w[1]) * m_Magnitude[1] + std::abs(w[2]) * m_Magnitude[2];
-    const double bound = Orient3DBound * permanent;
-    if (det > bound || -det > bound)
-    {
-      return SignOf(det);
-    }
-    return Orient3DUncertain(m_A, m_B, m_C, d);
+    const int sign = m_Products.Sign(d - m_A);
+    return sign != 0 ? sign : Orient3DUncertain(m_A, m_B, m_C, d);
   }
 
 private:
   static int
   Orient3DUncertain(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d);
 
-  Vec3 m_A;
-  Vec3 m_B;
-  Vec3 m_C;
-  Vec3 m_Cross;
-  Vec3 m_Magnitude;
+  Vec3          m_A;
+  Vec3          m_B;
+  Vec3          m_C;
+  FilteredCross m_Products;
 };
 
 int
@@ -570,26 +583,10 @@ FanIsEmbeddedStar(const Vec3 & v, const Vec3 * ring, unsigned int k)
   {
     return false;
   }
-  // The products of a x b, and their magnitudes, for det[N, a, b] = N . (a x b) and
-  // its static filter bound: a and b are rounded differences and N is exact, as in
-  // Orient3D's filter (w . (u x v) of three rounded differences).
-  struct Products
-  {
-    Vec3 cross;
-    Vec3 magnitude;
-  };
-  auto products = [](const Vec3 & a, const Vec3 & b) {
-    const double m0 = a[1] * b[2];
-    const double m1 = a[2] * b[1];
-    const double m2 = a[2] * b[0];
-    const double m3 = a[0] * b[2];
-    const double m4 = a[0] * b[1];
-    const double m5 = a[1] * b[0];
-    return Products{ MakeVec3(m0 - m1, m2 - m3, m4 - m5),
-                     MakeVec3(std::abs(m0) + std::abs(m1), std::abs(m2) + std::abs(m3), std::abs(m4) + std::abs(m5)) };
-  };
-  Vec3     spoke[MaximumValence];
-  Products face[MaximumValence];
+  // det[N, a, b] = N . (a x b), decided by Orient3D's static filter: a and b are
+  // rounded differences and N is exact.
+  Vec3          spoke[MaximumValence];
+  FilteredCross face[MaximumValence];
   for (unsigned int i = 0; i < k; ++i)
   {
     spoke[i] = ring[i] - v;
@@ -597,21 +594,14 @@ FanIsEmbeddedStar(const Vec3 & v, const Vec3 * ring, unsigned int k)
   Vec3 N = MakeVec3(0.0, 0.0, 0.0);
   for (unsigned int i = 0; i < k; ++i)
   {
-    face[i] = products(spoke[i], spoke[(i + 1) % k]);
+    face[i] = FilteredCross(spoke[i], spoke[(i + 1) % k]);
     N += face[i].cross;
   }
-  // +1 / -1 if det[N, a, b] is certainly positive / negative, 0 if the filter cannot tell.
-  auto sign = [&N](const Products & p) {
-    const double det = N[0] * p.cross[0] + N[1] * p.cross[1] + N[2] * p.cross[2];
-    const double bound = Orient3DBound * (std::abs(N[0]) * p.magnitude[0] + std::abs(N[1]) * p.magnitude[1] +
-                                          std::abs(N[2]) * p.magnitude[2]);
-    return det > bound ? 1 : (-det > bound ? -1 : 0);
-  };
   // Every face turns counter-clockwise about N (so no face is degenerate or seen
   // edge-on, and each covers an angle below pi)...
   for (unsigned int i = 0; i < k; ++i)
   {
-    if (sign(face[i]) != 1)
+    if (face[i].Sign(N) != 1)
     {
       return false;
     }
@@ -621,7 +611,7 @@ FanIsEmbeddedStar(const Vec3 & v, const Vec3 * ring, unsigned int k)
   // twice would take the sweep across it.
   for (unsigned int i = 2; i + 1 < k; ++i)
   {
-    if (sign(products(spoke[i], spoke[0])) != -1 && sign(products(spoke[0], spoke[i + 1])) != -1)
+    if (FilteredCross(spoke[i], spoke[0]).Sign(N) != -1 && FilteredCross(spoke[0], spoke[i + 1]).Sign(N) != -1)
     {
       return false;
     }
