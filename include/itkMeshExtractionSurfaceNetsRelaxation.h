@@ -499,56 +499,88 @@ RelaxSurfaceNet(SurfaceNet &                            net,
       parameters.numberOfWorkUnits);
   }
 
+  // A node's value I, gradient G = dI/d(index) and the trilinear field's exact
+  // derivative dI at p, from its cell's cache; false (nothing computed) without a
+  // cache or when p is outside the node's cell.
+  struct CellSample
+  {
+    double value;
+    Vec3   G;
+    Vec3   dI;
+  };
+  auto sampleCell = [&](const Vec3 & p, std::size_t node, CellSample & sample) -> bool {
+    if (cache.empty())
+    {
+      return false;
+    }
+    const CellCache & cc = cache[node];
+    const double      u = p[0] - cc.corner[0];
+    const double      v = p[1] - cc.corner[1];
+    const double      w = p[2] - cc.corner[2];
+    if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0))
+    {
+      return false;
+    }
+    const double  uv = u * v;
+    const double  uw = u * w;
+    const double  vw = v * w;
+    const double  uvw = uv * w;
+    const float * f = cc.value;
+#if defined(__SSE2__)
+    // The value and the three gradient fields at once, in single precision (the
+    // coefficients' own precision): four 8-term dot products with the basis
+    // (1, u, v, w, uv, uw, vw, uvw), summed across lanes by a 4x4 transpose.
+    const __m128 b0 = _mm_set_ps(static_cast<float>(w), static_cast<float>(v), static_cast<float>(u), 1.0f);
+    const __m128 b1 =
+      _mm_set_ps(static_cast<float>(uvw), static_cast<float>(vw), static_cast<float>(uw), static_cast<float>(uv));
+    auto dot = [&](const float * k) {
+      return _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(k), b0), _mm_mul_ps(_mm_loadu_ps(k + 4), b1));
+    };
+    __m128 r0 = dot(cc.value);
+    __m128 r1 = dot(cc.gradient[0]);
+    __m128 r2 = dot(cc.gradient[1]);
+    __m128 r3 = dot(cc.gradient[2]);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    float sum[4];
+    _mm_storeu_ps(sum, _mm_add_ps(_mm_add_ps(r0, r1), _mm_add_ps(r2, r3)));
+    sample.value = sum[0];
+    sample.G =
+      parameters.centralDifferences ? MakeVec3(sum[1], sum[2], sum[3]) : gradient(p, static_cast<std::uint32_t>(node));
+#else
+    auto field = [&](const float * k) {
+      return k[0] + k[1] * u + k[2] * v + k[3] * w + k[4] * uv + k[5] * uw + k[6] * vw + k[7] * uvw;
+    };
+    sample.value = field(f);
+    sample.G = parameters.centralDifferences
+                 ? MakeVec3(field(cc.gradient[0]), field(cc.gradient[1]), field(cc.gradient[2]))
+                 : gradient(p, static_cast<std::uint32_t>(node));
+#endif
+    sample.dI = MakeVec3(f[1] + f[4] * v + f[5] * w + f[7] * vw,
+                         f[2] + f[4] * u + f[6] * w + f[7] * uw,
+                         f[3] + f[5] * u + f[6] * v + f[7] * uv);
+    return true;
+  };
+
   // The step to the iso-surface from p along the unit physical gradient n (mm),
   // from a linear model of the image along n (thesis 3.2.3).
   auto projection = [&](const Vec3 & p, std::uint32_t node, Vec3 & n) -> double {
-    if (!cache.empty())
+    if (CellSample sample; sampleCell(p, node, sample))
     {
-      const SurfaceCell & c = net.cells[net.nodeCell[node]];
-      const double        u = p[0] - c.x;
-      const double        v = p[1] - c.y;
-      const double        w = p[2] - c.z;
-      if (u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0)
+      const Vec3   g = MinvT * sample.G;
+      const double magnitude = Norm(g);
+      if (!(magnitude > 0.0))
       {
-        const CellCache & cc = cache[node];
-        const double      uv = u * v;
-        const double      uw = u * w;
-        const double      vw = v * w;
-        const double      uvw = uv * w;
-        auto              field = [&](const float * k) {
-          return k[0] + k[1] * u + k[2] * v + k[3] * w + k[4] * uv + k[5] * uw + k[6] * vw + k[7] * uvw;
-        };
-        const float * f = cc.value;
-        const double  value = field(f);
-        Vec3          G;
-        if (parameters.centralDifferences)
-        {
-          G = MakeVec3(field(cc.gradient[0]), field(cc.gradient[1]), field(cc.gradient[2]));
-        }
-        else
-        {
-          G = gradient(p, node);
-        }
-        const Vec3   g = MinvT * G;
-        const double magnitude = Norm(g);
-        if (!(magnitude > 0.0))
-        {
-          n.Fill(0.0);
-          return 0.0;
-        }
-        n = g * (1.0 / magnitude);
-        // Exact derivative of the trilinear field (index space) along n.
-        const double du = f[1] + f[4] * v + f[5] * w + f[7] * vw;
-        const double dv = f[2] + f[4] * u + f[6] * w + f[7] * uw;
-        const double dw = f[3] + f[5] * u + f[6] * v + f[7] * uv;
-        const Vec3   direction = Minv * n; // index displacement per mm along n
-        const double slope = du * direction[0] + dv * direction[1] + dw * direction[2];
-        if (!(std::abs(slope) > 1e-3 * magnitude))
-        {
-          return 0.0;
-        }
-        return std::clamp((parameters.isoValue - value) / slope, -cellDiagonal, cellDiagonal);
+        n.Fill(0.0);
+        return 0.0;
       }
+      n = g * (1.0 / magnitude);
+      // The exact derivative of the trilinear field along n (M^-1 n: index displacement per mm).
+      const double slope = Dot(sample.dI, Minv * n);
+      if (!(std::abs(slope) > 1e-3 * magnitude))
+      {
+        return 0.0;
+      }
+      return std::clamp((parameters.isoValue - sample.value) / slope, -cellDiagonal, cellDiagonal);
     }
     const Vec3   g = MinvT * gradient(p, node);
     const double magnitude = Norm(g);
@@ -576,55 +608,12 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   // slope = dI.(M^-1 n) = dI.t/|g|, is t (iso - I)/(dI.t). The same vectors as the
   // general path below, with no square root and two divisions.
   auto cachedStep = [&](const Vec3 & p, std::size_t node, const Vec3 & a, Vec3 & d) -> bool {
-    if (cache.empty())
+    CellSample sample;
+    if (!sampleCell(p, node, sample))
     {
       return false;
     }
-    const CellCache & cc = cache[node];
-    const double      u = p[0] - cc.corner[0];
-    const double      v = p[1] - cc.corner[1];
-    const double      w = p[2] - cc.corner[2];
-    if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0))
-    {
-      return false;
-    }
-    const double  uv = u * v;
-    const double  uw = u * w;
-    const double  vw = v * w;
-    const double  uvw = uv * w;
-    const float * f = cc.value;
-    double        value;
-    Vec3          G;
-#if defined(__SSE2__)
-    // The value and the three gradient fields at once, in single precision (the
-    // coefficients' own precision): four 8-term dot products with the basis
-    // (1, u, v, w, uv, uw, vw, uvw), summed across lanes by a 4x4 transpose.
-    {
-      const __m128 b0 = _mm_set_ps(static_cast<float>(w), static_cast<float>(v), static_cast<float>(u), 1.0f);
-      const __m128 b1 =
-        _mm_set_ps(static_cast<float>(uvw), static_cast<float>(vw), static_cast<float>(uw), static_cast<float>(uv));
-      auto dot = [&](const float * k) {
-        return _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(k), b0), _mm_mul_ps(_mm_loadu_ps(k + 4), b1));
-      };
-      __m128 r0 = dot(cc.value);
-      __m128 r1 = dot(cc.gradient[0]);
-      __m128 r2 = dot(cc.gradient[1]);
-      __m128 r3 = dot(cc.gradient[2]);
-      _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
-      float sum[4];
-      _mm_storeu_ps(sum, _mm_add_ps(_mm_add_ps(r0, r1), _mm_add_ps(r2, r3)));
-      value = sum[0];
-      G = parameters.centralDifferences ? MakeVec3(sum[1], sum[2], sum[3])
-                                        : gradient(p, static_cast<std::uint32_t>(node));
-    }
-#else
-    auto field = [&](const float * k) {
-      return k[0] + k[1] * u + k[2] * v + k[3] * w + k[4] * uv + k[5] * uw + k[6] * vw + k[7] * uvw;
-    };
-    value = field(f);
-    G = parameters.centralDifferences ? MakeVec3(field(cc.gradient[0]), field(cc.gradient[1]), field(cc.gradient[2]))
-                                      : gradient(p, static_cast<std::uint32_t>(node));
-#endif
+    const Vec3 & G = sample.G;
     const Vec3   t = W * G;
     const double g2 = Dot(G, t);
     d = useAveraging ? a * parameters.smoothingWeight : MakeVec3(0, 0, 0);
@@ -632,15 +621,11 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     {
       return true; // no gradient: no projection, no step (as n = 0 below)
     }
-    double coefficient = useAveraging ? -Dot(G, a) / g2 * parameters.smoothingWeight : 0.0;
-    // Exact derivative of the trilinear field (index space).
-    const double du = f[1] + f[4] * v + f[5] * w + f[7] * vw;
-    const double dv = f[2] + f[4] * u + f[6] * w + f[7] * uw;
-    const double dw = f[3] + f[5] * u + f[6] * v + f[7] * uv;
-    const double slope = du * t[0] + dv * t[1] + dw * t[2]; // |g| times the slope along n
+    double       coefficient = useAveraging ? -Dot(G, a) / g2 * parameters.smoothingWeight : 0.0;
+    const double slope = Dot(sample.dI, t); // |g| times the slope along n
     if (std::abs(slope) > 1e-3 * g2)
     {
-      double q = (parameters.isoValue - value) / slope; // the distance is q |g|
+      double q = (parameters.isoValue - sample.value) / slope; // the distance is q |g|
       if (q * q * g2 > cellDiagonal * cellDiagonal)
       {
         q = std::copysign(cellDiagonal / std::sqrt(g2), q);
