@@ -724,10 +724,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
             }
           }
         }
-        if (!std::all_of(corners.begin(), corners.end(), [&](const Corner & a) { return a.node == corners[0].node; }))
-        {
-          std::sort(corners.begin(), corners.end(), [](const Corner & a, const Corner & b) { return a.node < b.node; });
-        }
+        std::sort(corners.begin(), corners.end(), [](const Corner & a, const Corner & b) { return a.node < b.node; });
         for (std::size_t first = 0; first < corners.size();)
         {
           std::size_t last = first;
