@@ -145,9 +145,27 @@ struct SurfaceNetsVoxelRange
   }
 };
 
+/** The index of the lowest set bit of a non-zero mask. */
+inline unsigned int
+CountTrailingZeros(unsigned int mask)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return static_cast<unsigned int>(__builtin_ctz(mask));
+#else
+  unsigned int n = 0;
+  while (!(mask & 1u))
+  {
+    mask >>= 1;
+    ++n;
+  }
+  return n;
+#endif
+}
+
 /** One voxel row of the classification: flags[x] = inside(row[x]) (NaN never
- * inside), the row's extremes ignoring NaN (unchanged when every voxel is NaN),
- * and whether it holds a NaN. Branch-free loops the compiler vectorizes for
+ * inside), the number of inside voxels (added to `insideCount`), the row's
+ * extremes ignoring NaN (unchanged when every voxel is NaN), and whether it holds
+ * a NaN. Branch-free loops the compiler vectorizes for
  * integer pixels; float rows use SSE2 where the compiler offers it, since the
  * compiler may not reorder floating-point minimum/maximum reductions itself. */
 template <typename TPixel, typename TInside>
@@ -156,6 +174,7 @@ ClassifySurfaceNetsRow(const TPixel * row,
                        std::int64_t   n,
                        TInside        inside,
                        std::uint8_t * flags,
+                       std::size_t &  insideCount,
                        TPixel &       lowest,
                        TPixel &       highest,
                        bool &         hasNaN)
@@ -167,27 +186,70 @@ ClassifySurfaceNetsRow(const TPixel * row,
     const __m128  low = _mm_set1_ps(inside.low);
     const __m128  high = _mm_set1_ps(inside.high);
     const __m128i one = _mm_set1_epi8(1);
-    __m128        lo = _mm_set1_ps(lowest);
-    __m128        hi = _mm_set1_ps(highest);
-    __m128        nan = _mm_setzero_ps();
-    for (; x + 16 <= n; x += 16)
-    {
-      __m128i masks[4];
-      for (unsigned int k = 0; k < 4; ++k)
+    // Two accumulators each, so that the minimum and maximum chains do not wait on
+    // every load.
+    __m128 lo[2] = { _mm_set1_ps(lowest), _mm_set1_ps(lowest) };
+    __m128 hi[2] = { _mm_set1_ps(highest), _mm_set1_ps(highest) };
+    __m128 nan = _mm_setzero_ps();
+    // An iso-value has one finite bound: one comparison (false for NaN) suffices.
+    const int bounds = (inside.low > -std::numeric_limits<float>::infinity() ? 1 : 0) |
+                       (inside.high < std::numeric_limits<float>::infinity() ? 2 : 0);
+    auto run = [&](auto inRange) {
+      // Locals, not captured references, so that the stores to the flags cannot alias them.
+      std::int64_t         i = x;
+      const float * const  r = row;
+      std::uint8_t * const f = flags;
+      __m128               lo0 = lo[0], lo1 = lo[1], hi0 = hi[0], hi1 = hi[1], na = nan;
+      __m128i              count = _mm_setzero_si128();
+      for (; i + 16 <= n; i += 16)
       {
-        const __m128 v = _mm_loadu_ps(row + x + 4 * k);
-        masks[k] = _mm_castps_si128(_mm_and_ps(_mm_cmpge_ps(v, low), _mm_cmple_ps(v, high)));
-        lo = _mm_min_ps(v, lo); // a NaN v leaves lo
-        hi = _mm_max_ps(v, hi);
-        nan = _mm_or_ps(nan, _mm_cmpunord_ps(v, v));
+        const __m128  v0 = _mm_loadu_ps(r + i);
+        const __m128  v1 = _mm_loadu_ps(r + i + 4);
+        const __m128  v2 = _mm_loadu_ps(r + i + 8);
+        const __m128  v3 = _mm_loadu_ps(r + i + 12);
+        const __m128i m0 = _mm_castps_si128(inRange(v0));
+        const __m128i m1 = _mm_castps_si128(inRange(v1));
+        const __m128i m2 = _mm_castps_si128(inRange(v2));
+        const __m128i m3 = _mm_castps_si128(inRange(v3));
+        lo0 = _mm_min_ps(v0, lo0); // a NaN v leaves lo
+        lo1 = _mm_min_ps(v1, lo1);
+        lo0 = _mm_min_ps(v2, lo0);
+        lo1 = _mm_min_ps(v3, lo1);
+        hi0 = _mm_max_ps(v0, hi0);
+        hi1 = _mm_max_ps(v1, hi1);
+        hi0 = _mm_max_ps(v2, hi0);
+        hi1 = _mm_max_ps(v3, hi1);
+        na = _mm_or_ps(_mm_or_ps(na, _mm_cmpunord_ps(v0, v1)), _mm_cmpunord_ps(v2, v3));
+        const __m128i bytes = _mm_and_si128(_mm_packs_epi16(_mm_packs_epi32(m0, m1), _mm_packs_epi32(m2, m3)), one);
+        _mm_storeu_si128(reinterpret_cast<__m128i *>(f + i), bytes);
+        count = _mm_add_epi64(count, _mm_sad_epu8(bytes, _mm_setzero_si128()));
       }
-      const __m128i bytes = _mm_packs_epi16(_mm_packs_epi32(masks[0], masks[1]), _mm_packs_epi32(masks[2], masks[3]));
-      _mm_storeu_si128(reinterpret_cast<__m128i *>(flags + x), _mm_and_si128(bytes, one));
+      alignas(16) std::uint64_t counts[2];
+      _mm_store_si128(reinterpret_cast<__m128i *>(counts), count);
+      insideCount += static_cast<std::size_t>(counts[0] + counts[1]);
+      x = i;
+      lo[0] = lo0;
+      lo[1] = lo1;
+      hi[0] = hi0;
+      hi[1] = hi1;
+      nan = na;
+    };
+    if (bounds == 1)
+    {
+      run([low](__m128 v) { return _mm_cmpge_ps(v, low); });
+    }
+    else if (bounds == 2)
+    {
+      run([high](__m128 v) { return _mm_cmple_ps(v, high); });
+    }
+    else
+    {
+      run([low, high](__m128 v) { return _mm_and_ps(_mm_cmpge_ps(v, low), _mm_cmple_ps(v, high)); });
     }
     alignas(16) float l[4];
     alignas(16) float h[4];
-    _mm_store_ps(l, lo);
-    _mm_store_ps(h, hi);
+    _mm_store_ps(l, _mm_min_ps(lo[0], lo[1]));
+    _mm_store_ps(h, _mm_max_ps(hi[0], hi[1]));
     for (unsigned int k = 0; k < 4; ++k)
     {
       lowest = l[k] < lowest ? l[k] : lowest;
@@ -196,10 +258,13 @@ ClassifySurfaceNetsRow(const TPixel * row,
     hasNaN = hasNaN || _mm_movemask_ps(nan) != 0;
   }
 #endif
+  std::size_t tail = 0;
   for (std::int64_t i = x; i < n; ++i)
   {
     flags[i] = static_cast<std::uint8_t>(inside(row[i]));
+    tail += flags[i];
   }
+  insideCount += tail;
   for (std::int64_t i = x; i < n; ++i)
   {
     lowest = row[i] < lowest ? row[i] : lowest;
@@ -310,10 +375,11 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
               ++start;
             }
           }
-          PixelType lowest = row[std::min(start, nx - 1)];
-          PixelType highest = lowest;
-          bool      hasNaN = false;
-          ClassifySurfaceNetsRow(row, nx, inside, flags, lowest, highest, hasNaN);
+          PixelType   lowest = row[std::min(start, nx - 1)];
+          PixelType   highest = lowest;
+          bool        hasNaN = false;
+          std::size_t insideInRow = 0;
+          ClassifySurfaceNetsRow(row, nx, inside, flags, insideInRow, lowest, highest, hasNaN);
           if (start < nx && count)
           {
             stats.minimum = std::min(stats.minimum, static_cast<double>(lowest));
@@ -374,15 +440,7 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
           s.last[y + 1] = last;
           if (count)
           {
-            if (last >= first)
-            {
-              std::size_t inRow = 0;
-              for (std::int64_t x = first; x <= last; ++x)
-              {
-                inRow += flags[x];
-              }
-              stats.insideVoxels += inRow;
-            }
+            stats.insideVoxels += insideInRow;
           }
         }
       };
@@ -424,22 +482,63 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
           }
           // Column codes (4 bits: the four rows) of voxel columns xFirst-1 .. xLast+1.
           std::uint8_t * code = columns.data() + 1; // code[x], x >= -1
-          for (std::int64_t x = xFirst - 1; x <= xLast + 1; ++x)
+          std::int64_t   column = xFirst - 1;
+#if defined(__SSE2__)
+          for (; column + 16 <= xLast + 2; column += 16)
           {
-            code[x] = static_cast<std::uint8_t>(rows[0][x] | (rows[1][x] << 1) | (rows[2][x] << 2) | (rows[3][x] << 3));
+            auto load = [column](const std::uint8_t * r) {
+              return _mm_loadu_si128(reinterpret_cast<const __m128i *>(r + column));
+            };
+            const __m128i r01 = _mm_or_si128(load(rows[0]), _mm_add_epi8(load(rows[1]), load(rows[1])));
+            const __m128i r23 = _mm_or_si128(load(rows[2]), _mm_add_epi8(load(rows[3]), load(rows[3])));
+            const __m128i c = _mm_or_si128(r01, _mm_slli_epi16(r23, 2)); // flags are 0 or 1: no carries
+            _mm_storeu_si128(reinterpret_cast<__m128i *>(code + column), c);
+          }
+#endif
+          for (; column <= xLast + 1; ++column)
+          {
+            code[column] = static_cast<std::uint8_t>(rows[0][column] | (rows[1][column] << 1) | (rows[2][column] << 2) |
+                                                     (rows[3][column] << 3));
           }
           // Cell x (columns x, x+1) is a surface cell unless its 8 corners agree.
-          for (std::int64_t x = xFirst - 1; x <= xLast; ++x)
+          auto addCell = [&](std::int64_t x) {
+            const unsigned int a = code[x];
+            const unsigned int b = code[x + 1];
+            cells.push_back({ static_cast<std::int32_t>(x),
+                              static_cast<std::int32_t>(y),
+                              static_cast<std::int32_t>(z),
+                              static_cast<std::uint8_t>(spread[a] | (spread[b] << 1)),
+                              0 });
+          };
+          std::int64_t x = xFirst - 1;
+#if defined(__SSE2__)
+          // 16 cells at a time: runs of cells inside the object (columns 15) or
+          // outside it (0) are skipped with one comparison each.
+          {
+            const __m128i zero = _mm_setzero_si128();
+            const __m128i full = _mm_set1_epi8(15);
+            for (; x + 16 <= xLast + 1; x += 16)
+            {
+              const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(code + x));
+              const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(code + x + 1));
+              const __m128i uniform =
+                _mm_or_si128(_mm_cmpeq_epi8(_mm_or_si128(a, b), zero), _mm_cmpeq_epi8(_mm_and_si128(a, b), full));
+              unsigned int mixed = ~static_cast<unsigned int>(_mm_movemask_epi8(uniform)) & 0xFFFFu;
+              while (mixed != 0)
+              {
+                addCell(x + CountTrailingZeros(mixed));
+                mixed &= mixed - 1;
+              }
+            }
+          }
+#endif
+          for (; x <= xLast; ++x)
           {
             const unsigned int a = code[x];
             const unsigned int b = code[x + 1];
             if ((a | b) != 0 && (a & b) != 15)
             {
-              cells.push_back({ static_cast<std::int32_t>(x),
-                                static_cast<std::int32_t>(y),
-                                static_cast<std::int32_t>(z),
-                                static_cast<std::uint8_t>(spread[a] | (spread[b] << 1)),
-                                0 });
+              addCell(x);
             }
           }
         }

@@ -385,17 +385,29 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
         buffer[i] = std::numeric_limits<float>::quiet_NaN();
       }
     }
-    const bool     below = trial % 2 == 0;
+    // Inside below or above an iso-value (one bound), or in a band (two bounds, as a label).
+    const bool                       below = trial % 2 == 0;
+    const bool                       band = trial % 3 == 2;
+    ME::SurfaceNetsVoxelRange<float> range = ME::SurfaceNetsVoxelRange<float>::FromIsoValue(density, !below);
+    if (band)
+    {
+      range = { static_cast<float>(density) - 0.25f, static_cast<float>(density) + 0.125f };
+    }
     ME::SurfaceNet net;
-    const auto     stats = ME::ClassifySurfaceCells(
-      image.GetPointer(), ME::SurfaceNetsVoxelRange<float>::FromIsoValue(density, !below), net, 1 + trial % 3);
+    const auto     stats = ME::ClassifySurfaceCells(image.GetPointer(), range, net, 1 + trial % 3);
+    auto           insideValue = [&](float v) {
+      if (band)
+      {
+        return v >= range.low && v <= range.high;
+      }
+      return below ? static_cast<double>(v) <= density : static_cast<double>(v) >= density;
+    };
     auto inside = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
       if (x < 0 || y < 0 || z < 0 || x >= size[0] || y >= size[1] || z >= size[2])
       {
         return false;
       }
-      const float v = buffer[(z * size[1] + y) * size[0] + x];
-      return below ? static_cast<double>(v) <= density : static_cast<double>(v) >= density;
+      return insideValue(buffer[(z * size[1] + y) * size[0] + x]);
     };
     std::vector<ME::SurfaceCell> expected;
     for (std::int64_t z = -1; z < size[2]; ++z)
@@ -440,7 +452,7 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
       }
       minimum = std::min(minimum, static_cast<double>(buffer[i]));
       maximum = std::max(maximum, static_cast<double>(buffer[i]));
-      insideVoxels += (below ? buffer[i] <= density : buffer[i] >= density) ? 1 : 0;
+      insideVoxels += insideValue(buffer[i]) ? 1 : 0;
     }
     EXPECT_EQ(stats.minimum, minimum);
     EXPECT_EQ(stats.maximum, maximum);
