@@ -211,19 +211,35 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
   const SurfaceNetsCellTable & table = SurfaceNetsCellTable::Get();
   const std::size_t            numberOfCells = net.cells.size();
 
-  // Rows of cells for lookups.
+  // Rows of cells for lookups: rowStart[r] is the first cell in row r or later, set
+  // where the row changes from one cell to the next (the cells are sorted).
   const std::int64_t rows = (net.size[1] + 1) * (net.size[2] + 1);
-  net.rowStart.assign(static_cast<std::size_t>(rows) + 1, 0);
-  for (const auto & c : net.cells)
-  {
-    ++net.rowStart[static_cast<std::size_t>((c.z + 1) * (net.size[1] + 1) + (c.y + 1)) + 1];
-  }
-  std::partial_sum(net.rowStart.begin(), net.rowStart.end(), net.rowStart.begin());
+  net.rowStart.resize(static_cast<std::size_t>(rows) + 1);
+  auto rowOf = [&net](const SurfaceCell & c) { return (c.z + 1) * (net.size[1] + 1) + (c.y + 1); };
+  ParallelForBlocks(
+    numberOfCells + 1,
+    16384,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const std::int64_t previous = i == 0 ? -1 : rowOf(net.cells[i - 1]);
+        const std::int64_t row = i == numberOfCells ? rows : rowOf(net.cells[i]);
+        for (std::int64_t r = previous + 1; r <= row; ++r)
+        {
+          net.rowStart[static_cast<std::size_t>(r)] = static_cast<std::uint32_t>(i);
+        }
+      }
+    },
+    numberOfWorkUnits);
 
   // Ambiguous faces: where the face's two segments would belong to one sheet in
   // both cells that share it (joining the same two nodes twice), cut off the
   // face's other pair of corners instead; that splits the sheet in both cells
   // and never joins sheets elsewhere, so one pass in cell order settles every face.
+  // A cell's faces with earlier cells were settled before it, so its rule is final
+  // once its later faces are: count its nodes (one per sheet) in the same pass.
+  std::uint32_t numberOfNodes = 0;
+  net.numberOfSplitCells = 0;
   for (std::size_t i = 0; i < numberOfCells; ++i)
   {
     SurfaceCell &      c = net.cells[i];
@@ -253,18 +269,13 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
         d.faceRules = static_cast<std::uint8_t>(d.faceRules ^ (1u << (upper - 1)));
       }
     }
-  }
-
-  // Nodes: one per sheet.
-  std::uint32_t numberOfNodes = 0;
-  net.numberOfSplitCells = 0;
-  for (auto & c : net.cells)
-  {
     c.firstNode = numberOfNodes;
     const unsigned int sheets = table.NumberOfSheets(c.configuration, c.faceRules);
     numberOfNodes += sheets;
     net.numberOfSplitCells += sheets > 1 ? 1 : 0;
   }
+
+  // Nodes.
   net.positions.resize(numberOfNodes);
   net.boxLower.resize(numberOfNodes);
   net.boxUpper.resize(numberOfNodes);
@@ -353,9 +364,44 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
     BlockSize,
     [&](std::size_t begin, std::size_t end, std::size_t block) {
       std::size_t q = quadsPerBlock[block];
+      // The neighbours of cell (x, y, z) lie in its own row and the rows at y+1, z+1
+      // and both, at x or x+1: one cursor per row, moving forward as x grows (the
+      // cells are sorted), instead of a search per neighbour.
+      struct RowCursor
+      {
+        const SurfaceCell * at{ nullptr };
+        const SurfaceCell * end{ nullptr };
+      };
+      RowCursor          cursors[4]; // rows (dy, dz) = (0, 0), (1, 0), (0, 1), (1, 1)
+      std::int64_t       currentRow = -1;
+      const std::int64_t rowsPerSlice = net.size[1] + 1;
+      auto               find = [&](RowCursor & r, std::int64_t x) -> std::int64_t {
+        while (r.at != r.end && r.at->x < x)
+        {
+          ++r.at;
+        }
+        return r.at != r.end && r.at->x == x ? r.at - net.cells.data() : -1;
+      };
       for (std::size_t i = begin; i < end; ++i)
       {
         const SurfaceCell & c = net.cells[i];
+        const std::int64_t  row = (c.z + 1) * rowsPerSlice + (c.y + 1);
+        if (row != currentRow)
+        {
+          currentRow = row;
+          for (unsigned int k = 0; k < 4; ++k)
+          {
+            const std::int64_t dy = k & 1u;
+            const std::int64_t dz = k >> 1;
+            cursors[k] = RowCursor{};
+            if (c.y + dy < net.size[1] && c.z + dz < net.size[2])
+            {
+              const std::size_t r = static_cast<std::size_t>(row + dz * rowsPerSlice + dy);
+              cursors[k].at = net.cells.data() + net.rowStart[r];
+              cursors[k].end = net.cells.data() + net.rowStart[r + 1];
+            }
+          }
+        }
         for (unsigned int a = 0; a < 3; ++a)
         {
           const unsigned int e = 4 * a + 3;
@@ -365,17 +411,17 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
           }
           const unsigned int b = (a + 1) % 3;
           const unsigned int cAxis = (a + 2) % 3;
-          std::int64_t       base[3] = { c.x, c.y, c.z };
-          std::int64_t       pb[3] = { base[0], base[1], base[2] };
-          std::int64_t       pc[3] = { base[0], base[1], base[2] };
-          std::int64_t       pbc[3] = { base[0], base[1], base[2] };
-          ++pb[b];
-          ++pc[cAxis];
-          ++pbc[b];
-          ++pbc[cAxis];
-          const std::int64_t ib = net.FindCell(pb[0], pb[1], pb[2]);
-          const std::int64_t ic = net.FindCell(pc[0], pc[1], pc[2]);
-          const std::int64_t ibc = net.FindCell(pbc[0], pbc[1], pbc[2]);
+          // Offsets (dx, dy, dz) of the neighbours one step along b, along c, and along both.
+          unsigned int ob[3] = { 0, 0, 0 };
+          unsigned int oc[3] = { 0, 0, 0 };
+          ob[b] = 1;
+          oc[cAxis] = 1;
+          auto neighbour = [&](unsigned int dx, unsigned int dy, unsigned int dz) {
+            return find(cursors[dy + 2 * dz], std::int64_t{ c.x } + dx);
+          };
+          const std::int64_t ib = neighbour(ob[0], ob[1], ob[2]);
+          const std::int64_t ic = neighbour(oc[0], oc[1], oc[2]);
+          const std::int64_t ibc = neighbour(ob[0] + oc[0], ob[1] + oc[1], ob[2] + oc[2]);
           if (ib < 0 || ic < 0 || ibc < 0)
           {
             missingNeighbour = true;
@@ -409,15 +455,18 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
     itkGenericExceptionMacro("SurfaceNets: internal error: a crossing voxel edge lacks one of its four surface cells.");
   }
 
-  // Links: the edges of the quads. In a 2-manifold net every link is the edge of two
-  // quads, so each node gathers its links twice: sort the few (insertion sort) and drop
-  // repeats, in parallel over blocks of nodes.
+  // Links: the edges of the quads. Every link is the edge of two quads, the two
+  // crossing voxel edges of its segment on the face between its cells, and the quads
+  // are oriented consistently, so a link runs from v to w in one of them and from w
+  // to v in the other: each node gathers its links once as the successors of its
+  // corners. Sort the few (insertion sort; drop repeats, which a consistent net has
+  // none of) in parallel over blocks of nodes.
   std::vector<std::uint32_t> degree(numberOfNodes + 1, 0);
   for (const auto & quad : net.quads)
   {
     for (unsigned int k = 0; k < 4; ++k)
     {
-      degree[quad[k] + 1] += 2;
+      ++degree[quad[k] + 1];
     }
   }
   std::partial_sum(degree.begin(), degree.end(), degree.begin());
@@ -428,9 +477,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
     {
       for (unsigned int k = 0; k < 4; ++k)
       {
-        std::uint32_t & c = cursor[quad[k]];
-        all[c++] = quad[(k + 1) % 4];
-        all[c++] = quad[(k + 3) % 4];
+        all[cursor[quad[k]]++] = quad[(k + 1) % 4];
       }
     }
   }
@@ -458,6 +505,13 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
     },
     numberOfWorkUnits);
   std::partial_sum(unique.begin(), unique.end(), unique.begin());
+  if (unique.back() == degree.back())
+  {
+    // No repeats (always, in a consistently oriented net): the gathered links are the links.
+    net.neighbors = std::move(all);
+    net.neighborStart = std::move(degree);
+    return;
+  }
   net.neighbors.resize(unique.back());
   ParallelForBlocks(
     numberOfNodes,
