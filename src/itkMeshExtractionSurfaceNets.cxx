@@ -850,6 +850,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
         std::uint32_t index;
         std::uint32_t cells[4];
         std::uint32_t faces[2][3];
+        unsigned int  apart; ///< bit s: face s may meet other faces of the cell away from a certified node
       };
       std::vector<Quad> quads;
       for (std::size_t c = begin; c < end; ++c)
@@ -859,17 +860,34 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
           continue;
         }
         quads.clear();
+        // A cell with one node, certified: every quad of the cell has that node, and
+        // two faces that both have it do not intersect, so only faces without it
+        // (one face of a quad not split through the node) need pairs here.
+        const std::uint32_t firstNode = net.cells[c].firstNode;
+        const bool          singleStar =
+          (c + 1 < numberOfCells ? net.cells[c + 1].firstNode : static_cast<std::uint32_t>(net.positions.size())) ==
+            firstNode + 1 &&
+          starNode[firstNode];
+        unsigned int anyApart = 0;
         for (std::uint32_t k = start[c]; k < start[c + 1]; ++k)
         {
           Quad quad;
           quad.index = quadsOfCell[k];
+          quad.apart = 0;
           std::copy(quadCells[quad.index].begin(), quadCells[quad.index].end(), quad.cells);
           for (unsigned int s = 0; s < 2; ++s)
           {
             const auto & face = mesh.triangles[2 * quad.index + s];
             std::copy(face.begin(), face.end(), quad.faces[s]);
+            const bool hasNode = face[0] == firstNode || face[1] == firstNode || face[2] == firstNode;
+            quad.apart |= (!singleStar || !hasNode) ? (1u << s) : 0u;
           }
+          anyApart |= quad.apart;
           quads.push_back(quad);
+        }
+        if (anyApart == 0)
+        {
+          continue; // every face of the cell meets every other at its certified node
         }
         auto test = [&](const Quad & a, unsigned int s, const Quad & b, unsigned int t) {
           const std::uint32_t f = 2 * a.index + s;
@@ -925,6 +943,10 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
           for (std::size_t j = i + 1; j < quads.size(); ++j)
           {
             const Quad & b = quads[j];
+            if ((a.apart | b.apart) == 0)
+            {
+              continue;
+            }
             // Each pair of quads once: in the first cell they share (both lists
             // are ascending and contain c, so no common cell may come before c).
             bool         firstShared = true;
@@ -953,7 +975,10 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
             {
               for (unsigned int t = 0; t < 2; ++t)
               {
-                test(a, s, b, t);
+                if (((a.apart >> s) | (b.apart >> t)) & 1u)
+                {
+                  test(a, s, b, t);
+                }
               }
             }
           }
