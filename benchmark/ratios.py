@@ -5,6 +5,8 @@
     python3 benchmark/ratios.py BINARY --repetitions 3     (best of 3, on a busy machine)
     python3 benchmark/ratios.py --json results.json       (ratios of an earlier run)
 
+Each method runs in a process of its own (--one-process: all in one).
+
 For every size and thread count (1 and all):
   net construction / vtkFlyingEdges3D           issue 5 target: <= 1
       ("net core": classification, net and faces into flat arrays, as FlyingEdges
@@ -46,16 +48,29 @@ RATIOS = [  # (label, numerator, denominator, target)
 ]
 
 
-def run_benchmarks(binary, large, repetitions, extra):
-    command = [binary, "--benchmark_format=json", "--benchmark_filter=^(SurfaceNets|VTK)/"]
-    if large:
-        command.append("--large")
-    if repetitions > 1:
-        command.append("--benchmark_repetitions={}".format(repetitions))
-    command += extra
-    print("running:", " ".join(command), file=sys.stderr)
-    result = subprocess.run(command, check=True, stdout=subprocess.PIPE, universal_newlines=True)
-    return json.loads(result.stdout)
+def run_benchmarks(binary, large, repetitions, extra, one_process=False):
+    """Run the extraction benchmarks, each method in a process of its own unless
+    one_process: in one process, what one method leaves on the heap changes the
+    page faults and allocation times of the next, by more than the differences
+    measured here."""
+    filters = ["^(SurfaceNets|VTK)/"] if one_process else \
+        ["^" + re.escape(name) + "/" for name, _ in COLUMNS]
+    merged = None
+    for benchmark_filter in filters:
+        command = [binary, "--benchmark_format=json", "--benchmark_filter=" + benchmark_filter]
+        if large:
+            command.append("--large")
+        if repetitions > 1:
+            command.append("--benchmark_repetitions={}".format(repetitions))
+        command += extra
+        print("running:", " ".join(command), file=sys.stderr)
+        result = subprocess.run(command, check=True, stdout=subprocess.PIPE, universal_newlines=True)
+        output = json.loads(result.stdout)
+        if merged is None:
+            merged = output
+        else:
+            merged["benchmarks"] += output.get("benchmarks", [])
+    return merged
 
 
 def collect(results):
@@ -115,6 +130,8 @@ def main():
     parser.add_argument("--large", action="store_true", help="include the 512^3 cases")
     parser.add_argument("--repetitions", type=int, default=1,
                         help="repeat every benchmark N times and keep the best (for a shared, noisy machine)")
+    parser.add_argument("--one-process", action="store_true",
+                        help="run all benchmarks in one process (by default each method gets its own)")
     parser.add_argument("--json", help="read the results of an earlier --benchmark_format=json run instead")
     parser.add_argument("--save", help="write the benchmark's JSON output to this file")
     parser.add_argument("extra", nargs="*", help="further arguments for the benchmark (after --)")
@@ -123,7 +140,7 @@ def main():
         with open(args.json) as f:
             results = json.load(f)
     elif args.binary:
-        results = run_benchmarks(args.binary, args.large, args.repetitions, args.extra)
+        results = run_benchmarks(args.binary, args.large, args.repetitions, args.extra, args.one_process)
         if args.save:
             with open(args.save, "w") as f:
                 json.dump(results, f, indent=1)
