@@ -18,6 +18,7 @@
 #ifndef itkMeshExtractionSurfaceNetsRelaxation_h
 #define itkMeshExtractionSurfaceNetsRelaxation_h
 
+#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSurfaceNets.h"
 #include "itkDiscreteGaussianDerivativeImageFunction.h"
@@ -433,10 +434,10 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     c[6] = static_cast<float>(f[6] - f[4] - f[2] + f[0]);
     c[7] = static_cast<float>(f[7] - f[6] - f[5] + f[4] - f[3] + f[2] + f[1] - f[0]);
   };
-  std::vector<CellCache> cache;
+  UninitializedArray<CellCache> cache; // 200 bytes a node, all written below
   if (sampler != nullptr && useGradient)
   {
-    cache.resize(numberOfNodes);
+    cache.Allocate(numberOfNodes);
     ParallelForBlocks(
       numberOfNodes,
       BlockSize,

@@ -16,6 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionSurfaceNets.h"
+#include "itkMeshExtractionBuffer.h"
 #include "itkSurfaceNetsImageToMeshFilterEnums.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionPredicates.h"
@@ -691,8 +692,8 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
   // The quads of each cell: those with a node in it (a quad's four nodes lie in four
   // different cells).
   // The cells of each quad, ascending.
-  std::vector<std::array<std::uint32_t, 4>> quadCells(numberOfQuads);
-  std::vector<std::uint32_t>                start(numberOfCells + 1, 0);
+  UninitializedArray<std::array<std::uint32_t, 4>> quadCells(numberOfQuads);
+  std::vector<std::uint32_t>                       start(numberOfCells + 1, 0);
   for (std::size_t q = 0; q < numberOfQuads; ++q)
   {
     for (unsigned int v = 0; v < 4; ++v)
@@ -703,7 +704,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
     std::sort(quadCells[q].begin(), quadCells[q].end());
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::uint32_t> quadsOfCell(start.back());
+  UninitializedArray<std::uint32_t> quadsOfCell(start.back());
   {
     std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
     for (std::uint32_t q = 0; q < numberOfQuads; ++q)
