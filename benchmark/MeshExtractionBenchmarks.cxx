@@ -168,7 +168,7 @@ NetConstruction(benchmark::State & state)
     const auto     start = Clock::now();
     ME::SurfaceNet net;
     const auto     statistics =
-      ME::ClassifySurfaceCells(image, ME::SurfaceNetsVoxelRange<float>::FromIsoValue(0.0, false), net, threads);
+      ME::ClassifySurfaceCells(image, ME::SurfaceNetsVoxelRange<float>::FromIsoValue(0.0, false), net, threads, false);
     const auto t1 = Clock::now();
     ME::BuildSurfaceNet(net, 0.01, threads);
     const auto                                t2 = Clock::now();

@@ -168,7 +168,7 @@ CountTrailingZeros(unsigned int mask)
  * a NaN. Branch-free loops the compiler vectorizes for
  * integer pixels; float rows use SSE2 where the compiler offers it, since the
  * compiler may not reorder floating-point minimum/maximum reductions itself. */
-template <typename TPixel, typename TInside>
+template <bool TExtremes = true, typename TPixel, typename TInside>
 void
 ClassifySurfaceNetsRow(const TPixel * row,
                        std::int64_t   n,
@@ -211,14 +211,17 @@ ClassifySurfaceNetsRow(const TPixel * row,
         const __m128i m1 = _mm_castps_si128(inRange(v1));
         const __m128i m2 = _mm_castps_si128(inRange(v2));
         const __m128i m3 = _mm_castps_si128(inRange(v3));
-        lo0 = _mm_min_ps(v0, lo0); // a NaN v leaves lo
-        lo1 = _mm_min_ps(v1, lo1);
-        lo0 = _mm_min_ps(v2, lo0);
-        lo1 = _mm_min_ps(v3, lo1);
-        hi0 = _mm_max_ps(v0, hi0);
-        hi1 = _mm_max_ps(v1, hi1);
-        hi0 = _mm_max_ps(v2, hi0);
-        hi1 = _mm_max_ps(v3, hi1);
+        if constexpr (TExtremes)
+        {
+          lo0 = _mm_min_ps(v0, lo0); // a NaN v leaves lo
+          lo1 = _mm_min_ps(v1, lo1);
+          lo0 = _mm_min_ps(v2, lo0);
+          lo1 = _mm_min_ps(v3, lo1);
+          hi0 = _mm_max_ps(v0, hi0);
+          hi1 = _mm_max_ps(v1, hi1);
+          hi0 = _mm_max_ps(v2, hi0);
+          hi1 = _mm_max_ps(v3, hi1);
+        }
         na = _mm_or_ps(_mm_or_ps(na, _mm_cmpunord_ps(v0, v1)), _mm_cmpunord_ps(v2, v3));
         const __m128i bytes = _mm_and_si128(_mm_packs_epi16(_mm_packs_epi32(m0, m1), _mm_packs_epi32(m2, m3)), one);
         _mm_storeu_si128(reinterpret_cast<__m128i *>(f + i), bytes);
@@ -265,10 +268,13 @@ ClassifySurfaceNetsRow(const TPixel * row,
     tail += flags[i];
   }
   insideCount += tail;
-  for (std::int64_t i = x; i < n; ++i)
+  if constexpr (TExtremes)
   {
-    lowest = row[i] < lowest ? row[i] : lowest;
-    highest = row[i] > highest ? row[i] : highest;
+    for (std::int64_t i = x; i < n; ++i)
+    {
+      lowest = row[i] < lowest ? row[i] : lowest;
+      highest = row[i] > highest ? row[i] : highest;
+    }
   }
   if constexpr (std::is_floating_point<TPixel>::value)
   {
@@ -293,11 +299,17 @@ ClassifySurfaceNetsRow(const TPixel * row,
  * voxel rows (found 8 flags at a time), each cell from the 4-bit codes of its two
  * voxel columns. Memory beyond the image is two slices of flags per work unit plus
  * the surface cells. Cells come out sorted by (z, y, x) whatever the number of
- * threads.
+ * threads. Without `extremes` the statistics' minimum and maximum are not computed
+ * (left at their initial values), which saves a quarter of the float row pass: a
+ * caller that needs them only when there is no surface asks again then.
  * \ingroup MeshExtraction */
 template <typename TImage, typename TInside>
 SurfaceNetsClassificationStatistics
-ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, unsigned int numberOfWorkUnits = 0)
+ClassifySurfaceCells(const TImage * image,
+                     TInside        inside,
+                     SurfaceNet &   net,
+                     unsigned int   numberOfWorkUnits = 0,
+                     bool           extremes = true)
 {
   static_assert(TImage::ImageDimension == 3, "SurfaceNets works on 3-D images");
   using PixelType = typename TImage::PixelType;
@@ -379,8 +391,15 @@ ClassifySurfaceCells(const TImage * image, TInside inside, SurfaceNet & net, uns
           PixelType   highest = lowest;
           bool        hasNaN = false;
           std::size_t insideInRow = 0;
-          ClassifySurfaceNetsRow(row, nx, inside, flags, insideInRow, lowest, highest, hasNaN);
-          if (start < nx && count)
+          if (extremes)
+          {
+            ClassifySurfaceNetsRow<true>(row, nx, inside, flags, insideInRow, lowest, highest, hasNaN);
+          }
+          else
+          {
+            ClassifySurfaceNetsRow<false>(row, nx, inside, flags, insideInRow, lowest, highest, hasNaN);
+          }
+          if (extremes && start < nx && count)
           {
             stats.minimum = std::min(stats.minimum, static_cast<double>(lowest));
             stats.maximum = std::max(stats.maximum, static_cast<double>(highest));

@@ -137,11 +137,16 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
   }
   else
   {
-    greyscale = MeshExtraction::ClassifySurfaceCells(
-      input,
-      MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::FromIsoValue(m_IsoValue, m_InsideIsAboveIsoValue),
-      m_Net,
-      workUnits);
+    const auto range =
+      MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::FromIsoValue(m_IsoValue, m_InsideIsAboveIsoValue);
+    greyscale = MeshExtraction::ClassifySurfaceCells(input, range, m_Net, workUnits, false);
+    // The extremes are needed only where there may be no surface (no voxel inside, or
+    // every voxel inside: a constant image): read them then.
+    if (!greyscale.foundNaN &&
+        (greyscale.insideVoxels == 0 || greyscale.insideVoxels == input->GetBufferedRegion().GetNumberOfPixels()))
+    {
+      greyscale = MeshExtraction::ClassifySurfaceCells(input, range, m_Net, workUnits, true);
+    }
     if (!greyscale.foundNaN && greyscale.minimum == greyscale.maximum)
     {
       itkExceptionMacro("The input image is constant (every voxel is " << greyscale.minimum

@@ -458,6 +458,20 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
     EXPECT_EQ(stats.maximum, maximum);
     EXPECT_EQ(stats.insideVoxels, insideVoxels);
     ASSERT_EQ(stats.foundNaN, firstNaN >= 0);
+    // Without the extremes: the same cells, count and NaN, extremes left unset.
+    ME::SurfaceNet plain;
+    const auto     lean = ME::ClassifySurfaceCells(image.GetPointer(), range, plain, 1 + trial % 3, false);
+    ASSERT_EQ(plain.cells.size(), net.cells.size());
+    for (std::size_t i = 0; i < net.cells.size(); ++i)
+    {
+      ASSERT_TRUE(plain.cells[i].x == net.cells[i].x && plain.cells[i].y == net.cells[i].y &&
+                  plain.cells[i].z == net.cells[i].z && plain.cells[i].configuration == net.cells[i].configuration)
+        << "cell " << i;
+    }
+    EXPECT_EQ(lean.insideVoxels, insideVoxels);
+    EXPECT_EQ(lean.foundNaN, stats.foundNaN);
+    EXPECT_EQ(lean.minimum, ME::SurfaceNetsClassificationStatistics{}.minimum);
+    EXPECT_EQ(lean.maximum, ME::SurfaceNetsClassificationStatistics{}.maximum);
     if (firstNaN >= 0)
     {
       const std::int64_t index = (stats.nanVoxel[2] * size[1] + stats.nanVoxel[1]) * size[0] + stats.nanVoxel[0];
@@ -914,13 +928,16 @@ TEST(SurfaceNetsImageToMeshFilter, BadInputRaisesClearExceptions)
 
   auto constant = MakeImage<FloatImage>(6, 6, 6, 3.0f);
   filter->SetInput(constant);
-  expectMessage(filter, "constant");
+  expectMessage(filter, "constant (every voxel is 3)"); // every voxel inside (>= 0)
+  filter->SetIsoValue(5.0);                             // and none
+  expectMessage(filter, "constant (every voxel is 3)");
+  filter->SetIsoValue(0.0);
 
   auto image = MakeImage<FloatImage>(6, 6, 6, 0.0f);
   image->SetPixel({ { 2, 2, 2 } }, 10.0f);
   filter->SetInput(image);
   filter->SetIsoValue(20.0);
-  expectMessage(filter, "No voxel is inside");
+  expectMessage(filter, "No voxel is inside: the image ranges over [0, 10]");
 
   filter->SetIsoValue(5.0);
   image->SetPixel({ { 4, 1, 3 } }, std::numeric_limits<float>::quiet_NaN());
