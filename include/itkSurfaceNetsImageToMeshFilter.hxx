@@ -25,6 +25,7 @@
 #include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
+#include "itkMinimumMaximumImageCalculator.h"
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
 
@@ -141,11 +142,16 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
       MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::FromIsoValue(m_IsoValue, m_InsideIsAboveIsoValue);
     greyscale = MeshExtraction::ClassifySurfaceCells(input, range, m_Net, workUnits, false);
     // The extremes are needed only where there may be no surface (no voxel inside, or
-    // every voxel inside: a constant image): read them then.
+    // every voxel inside: a constant image), and then there is no NaN: read them then.
     if (!greyscale.foundNaN &&
         (greyscale.insideVoxels == 0 || greyscale.insideVoxels == input->GetBufferedRegion().GetNumberOfPixels()))
     {
-      greyscale = MeshExtraction::ClassifySurfaceCells(input, range, m_Net, workUnits, true);
+      auto extremes = MinimumMaximumImageCalculator<InputImageType>::New();
+      extremes->SetImage(input);
+      extremes->SetRegion(input->GetBufferedRegion());
+      extremes->Compute();
+      greyscale.minimum = static_cast<double>(extremes->GetMinimum());
+      greyscale.maximum = static_cast<double>(extremes->GetMaximum());
     }
     if (!greyscale.foundNaN && greyscale.minimum == greyscale.maximum)
     {
