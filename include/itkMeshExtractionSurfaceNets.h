@@ -111,6 +111,14 @@ struct MeshExtraction_EXPORT SurfaceNet
   std::vector<std::uint32_t>                neighbors;
   std::size_t                               numberOfSplitCells{ 0 };
 
+  /** The row of cells at (y, z), y and z in [-1, N-1]: its cells are
+   * [rowStart[row], rowStart[row + 1]). */
+  std::int64_t
+  RowOf(std::int64_t y, std::int64_t z) const
+  {
+    return (z + 1) * (size[1] + 1) + (y + 1);
+  }
+
   /** Index of the surface cell with lower corner (x, y, z), or -1. */
   std::int64_t
   FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const;

@@ -194,7 +194,7 @@ SurfaceNet::FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const
   {
     return -1;
   }
-  const std::int64_t row = (z + 1) * (size[1] + 1) + (y + 1);
+  const std::int64_t row = RowOf(y, z);
   const auto         begin = cells.begin() + rowStart[row];
   const auto         end = cells.begin() + rowStart[row + 1];
   const auto         found =
@@ -216,7 +216,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
   // where the row changes from one cell to the next (the cells are sorted).
   const std::int64_t rows = (net.size[1] + 1) * (net.size[2] + 1);
   net.rowStart.resize(static_cast<std::size_t>(rows) + 1);
-  auto rowOf = [&net](const SurfaceCell & c) { return (c.z + 1) * (net.size[1] + 1) + (c.y + 1); };
+  auto rowOf = [&net](const SurfaceCell & c) { return net.RowOf(c.y, c.z); };
   ParallelForBlocks(
     numberOfCells + 1,
     16384,
@@ -373,10 +373,9 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
         const SurfaceCell * at{ nullptr };
         const SurfaceCell * end{ nullptr };
       };
-      RowCursor          cursors[4]; // rows (dy, dz) = (0, 0), (1, 0), (0, 1), (1, 1)
-      std::int64_t       currentRow = -1;
-      const std::int64_t rowsPerSlice = net.size[1] + 1;
-      auto               find = [&](RowCursor & r, std::int64_t x) -> std::int64_t {
+      RowCursor    cursors[4]; // rows (dy, dz) = (0, 0), (1, 0), (0, 1), (1, 1)
+      std::int64_t currentRow = -1;
+      auto         find = [&](RowCursor & r, std::int64_t x) -> std::int64_t {
         while (r.at != r.end && r.at->x < x)
         {
           ++r.at;
@@ -386,7 +385,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
       for (std::size_t i = begin; i < end; ++i)
       {
         const SurfaceCell & c = net.cells[i];
-        const std::int64_t  row = (c.z + 1) * rowsPerSlice + (c.y + 1);
+        const std::int64_t  row = net.RowOf(c.y, c.z);
         if (row != currentRow)
         {
           currentRow = row;
@@ -397,7 +396,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
             cursors[k] = RowCursor{};
             if (c.y + dy < net.size[1] && c.z + dz < net.size[2])
             {
-              const std::size_t r = static_cast<std::size_t>(row + dz * rowsPerSlice + dy);
+              const std::size_t r = static_cast<std::size_t>(net.RowOf(c.y + dy, c.z + dz));
               cursors[k].at = net.cells.data() + net.rowStart[r];
               cursors[k].end = net.cells.data() + net.rowStart[r + 1];
             }
