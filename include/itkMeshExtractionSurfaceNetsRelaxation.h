@@ -454,42 +454,10 @@ RelaxSurfaceNet(SurfaceNet &                            net,
           // neighbours), read straight from the buffer when all are inside the image.
           const bool interior =
             c.x >= 1 && c.y >= 1 && c.z >= 1 && c.x + 2 < size[0] && c.y + 2 < size[1] && c.z + 2 < size[2];
-          bool   vectorized = false;
           double corner[8];
           double cornerGradient[3][8] = {};
-#if defined(__SSE2__)
-          using BufferPixel = std::remove_cv_t<std::remove_pointer_t<decltype(sampler->GetBufferPointer())>>;
-          if constexpr (std::is_same<BufferPixel, float>::value)
-          {
-            if (interior && parameters.centralDifferences)
-            {
-              // Two corners (x and x + 1) at a time, in double precision as below: the
-              // same values, from four loads of two voxels per corner row.
-              const float * b = sampler->GetBufferPointer() + (c.z * sz + c.y * sy + c.x);
-              auto          pair = [](const float * v) {
-                return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(v))));
-              };
-              const __m128d half = _mm_set1_pd(0.5);
-              for (unsigned int k = 0; k < 8; k += 2)
-              {
-                const float * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy;
-                const __m128d at = pair(v);
-                _mm_storeu_pd(corner + k, at);
-                _mm_storeu_pd(cornerGradient[0] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + 1), pair(v - 1))));
-                _mm_storeu_pd(cornerGradient[1] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sy), pair(v - sy))));
-                _mm_storeu_pd(cornerGradient[2] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sz), pair(v - sz))));
-              }
-              vectorized = true;
-            }
-          }
-#endif
-          if (vectorized)
-          {
-            // corner and cornerGradient are set
-          }
-          else if (interior)
-          {
-            const auto * b = sampler->GetBufferPointer() + (c.z * sz + c.y * sy + c.x);
+          // The corners and central differences inside the image, straight from the buffer.
+          auto readInterior = [&](const auto * b) {
             for (unsigned int k = 0; k < 8; ++k)
             {
               const auto * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy + (k & 1);
@@ -501,6 +469,43 @@ RelaxSurfaceNet(SurfaceNet &                            net,
                 cornerGradient[2][k] = 0.5 * (static_cast<double>(v[sz]) - static_cast<double>(v[-sz]));
               }
             }
+          };
+#if defined(__SSE2__)
+          // A float image: two corners (x and x + 1) at a time, in double precision as
+          // readInterior, so the same values, from four loads of two voxels per corner row.
+          auto readInteriorPairs = [&](const float * b) {
+            auto pair = [](const float * v) {
+              return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(v))));
+            };
+            const __m128d half = _mm_set1_pd(0.5);
+            for (unsigned int k = 0; k < 8; k += 2)
+            {
+              const float * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy;
+              _mm_storeu_pd(corner + k, pair(v));
+              if (parameters.centralDifferences)
+              {
+                _mm_storeu_pd(cornerGradient[0] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + 1), pair(v - 1))));
+                _mm_storeu_pd(cornerGradient[1] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sy), pair(v - sy))));
+                _mm_storeu_pd(cornerGradient[2] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sz), pair(v - sz))));
+              }
+            }
+          };
+#endif
+          if (interior)
+          {
+            const auto * b = sampler->GetBufferPointer() + (c.z * sz + c.y * sy + c.x);
+#if defined(__SSE2__)
+            if constexpr (std::is_same<std::remove_cv_t<std::remove_pointer_t<decltype(b)>>, float>::value)
+            {
+              readInteriorPairs(b);
+            }
+            else
+            {
+              readInterior(b);
+            }
+#else
+            readInterior(b);
+#endif
           }
           else
           {
