@@ -19,6 +19,7 @@
 #define itkMeshExtractionSurfaceNets_h
 
 #include "MeshExtractionExport.h"
+#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMatrix.h"
 
@@ -97,19 +98,19 @@ struct SurfaceCell
  */
 struct MeshExtraction_EXPORT SurfaceNet
 {
-  std::array<std::int64_t, 3> size{ { 0, 0, 0 } }; ///< image size in voxels
-  std::vector<SurfaceCell>    cells;               ///< sorted by (z, y, x)
-  std::vector<std::uint32_t>  rowStart;            ///< cells of cell-row (y, z): [rowStart[r], rowStart[r+1])
+  std::array<std::int64_t, 3>     size{ { 0, 0, 0 } }; ///< image size in voxels
+  LargeBlockVector<SurfaceCell>   cells;               ///< sorted by (z, y, x)
+  LargeBlockVector<std::uint32_t> rowStart;            ///< cells of cell-row (y, z): [rowStart[r], rowStart[r+1])
 
-  std::vector<Vec3>                         positions; ///< node positions, continuous index
-  std::vector<Vec3>                         boxLower;  ///< node constraint box, continuous index
-  std::vector<Vec3>                         boxUpper;
-  std::vector<std::uint32_t>                nodeCell; ///< cell of each node
-  std::vector<std::array<std::uint32_t, 4>> quads;
-  std::vector<std::uint8_t>                 quadAxis;      ///< axis of the crossing voxel edge, +4 if outward is -axis
-  std::vector<std::uint32_t>                neighborStart; ///< node links (the quads' edges): compressed rows
-  std::vector<std::uint32_t>                neighbors;
-  std::size_t                               numberOfSplitCells{ 0 };
+  LargeBlockVector<Vec3>                         positions; ///< node positions, continuous index
+  LargeBlockVector<Vec3>                         boxLower;  ///< node constraint box, continuous index
+  LargeBlockVector<Vec3>                         boxUpper;
+  LargeBlockVector<std::uint32_t>                nodeCell; ///< cell of each node
+  LargeBlockVector<std::array<std::uint32_t, 4>> quads;
+  LargeBlockVector<std::uint8_t>                 quadAxis; ///< axis of the crossing voxel edge, +4 if outward is -axis
+  LargeBlockVector<std::uint32_t>                neighborStart; ///< node links (the quads' edges): compressed rows
+  LargeBlockVector<std::uint32_t>                neighbors;
+  std::size_t                                    numberOfSplitCells{ 0 };
 
   /** The row of cells at (y, z), y and z in [-1, N-1]: its cells are
    * [rowStart[row], rowStart[row + 1]). */
@@ -165,10 +166,20 @@ MakeSurfaceNetFaces(const SurfaceNet &                          net,
 /** Node positions in physical space: origin + matrix * index, rounded to float when
  * the output mesh stores float coordinates (so that checks see what is written). */
 MeshExtraction_EXPORT std::vector<Vec3>
-                      ToPhysical(const std::vector<Vec3> &    index,
+                      ToPhysical(const Vec3 *                 index,
+                                 std::size_t                  numberOfPoints,
                                  const Vec3 &                 origin,
                                  const Matrix<double, 3, 3> & indexToPhysical,
                                  bool                         roundToFloat = false);
+template <typename TAllocator>
+std::vector<Vec3>
+ToPhysical(const std::vector<Vec3, TAllocator> & index,
+           const Vec3 &                          origin,
+           const Matrix<double, 3, 3> &          indexToPhysical,
+           bool                                  roundToFloat = false)
+{
+  return ToPhysical(index.data(), index.size(), origin, indexToPhysical, roundToFloat);
+}
 
 /** The self-intersecting face pairs of a SurfaceNet's triangles, found from the net's
  * structure instead of a tree over all faces: the two triangles of quad q are faces
@@ -210,7 +221,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
  * again; left empty when no faces of the final positions were made. */
 MeshExtraction_EXPORT std::size_t
                       RemoveSurfaceNetSelfIntersections(SurfaceNet &                                net,
-                                                        const std::vector<Vec3> &                   initial,
+                                                        const LargeBlockVector<Vec3> &              initial,
                                                         const Vec3 &                                origin,
                                                         const Matrix<double, 3, 3> &                indexToPhysical,
                                                         QuadSplit                                   split,

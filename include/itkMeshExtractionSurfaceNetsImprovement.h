@@ -103,14 +103,14 @@ MeshExtraction_EXPORT std::size_t
  * physical positions that will be written (`roundToFloat`). Returns the number of
  * nodes pulled back. `tree`: as for UndoIntersectingSwaps (built once, then refitted). */
 MeshExtraction_EXPORT std::size_t
-                      PullBackInvalidMoves(std::vector<Vec3> &          positions,
-                                           const std::vector<Vec3> &    start,
-                                           const SurfaceNetTriangles &  mesh,
-                                           const Vec3 &                 origin,
-                                           const Matrix<double, 3, 3> & indexToPhysical,
-                                           double                       degenerateQAreaTolerance,
-                                           bool                         roundToFloat = false,
-                                           TriangleAABBTree *           tree = nullptr);
+                      PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
+                                           const LargeBlockVector<Vec3> & start,
+                                           const SurfaceNetTriangles &    mesh,
+                                           const Vec3 &                   origin,
+                                           const Matrix<double, 3, 3> &   indexToPhysical,
+                                           double                         degenerateQAreaTolerance,
+                                           bool                           roundToFloat = false,
+                                           TriangleAABBTree *             tree = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

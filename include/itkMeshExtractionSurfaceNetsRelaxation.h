@@ -403,11 +403,11 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   cellDiagonal = std::sqrt(cellDiagonal);
   const double h = 0.5 * smallestSpacing; // finite-difference step along the gradient (mm)
 
-  const std::size_t     numberOfNodes = net.positions.size();
-  std::vector<Vec3>     next(numberOfNodes);
-  constexpr std::size_t BlockSize = 2048;
-  const std::size_t     numberOfBlocks = (numberOfNodes + BlockSize - 1) / BlockSize;
-  std::vector<double>   blockMaximum(numberOfBlocks);
+  const std::size_t      numberOfNodes = net.positions.size();
+  LargeBlockVector<Vec3> next(numberOfNodes);
+  constexpr std::size_t  BlockSize = 2048;
+  const std::size_t      numberOfBlocks = (numberOfNodes + BlockSize - 1) / BlockSize;
+  std::vector<double>    blockMaximum(numberOfBlocks);
 
   // Each node's cell: the 8 corner values and (central differences) corner
   // gradients, read once. Inside its cell a node's value, gradient and slope are then

@@ -19,6 +19,7 @@
 #define itkSurfaceNetsImageToMeshFilter_hxx
 
 #include "itkSurfaceNetsImageToMeshFilter.h"
+#include "itkMeshExtractionCellBlock.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
@@ -29,7 +30,6 @@
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
 
-#include <atomic>
 
 namespace itk
 {
@@ -282,7 +282,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   // still in later rounds: it is where the mesh is tight (thin or sharp parts).
   auto relaxAndCheck = [&]() {
     mesh.FillLinks(m_Net);
-    const std::vector<Vec3> start = m_Net.positions;
+    const LargeBlockVector<Vec3> start = m_Net.positions;
     this->RelaxNet(relaxation, m_ImprovementIterations);
     for (std::size_t i = 0; i < start.size(); ++i)
     {
@@ -291,7 +291,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
         m_Net.positions[i] = start[i]; // settled: leave it, and its faces, unchanged
       }
     }
-    const std::vector<Vec3> before = m_Net.positions;
+    const LargeBlockVector<Vec3> before = m_Net.positions;
     m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat, &tree);
     for (std::size_t i = 0; i < start.size(); ++i)
     {
@@ -452,32 +452,38 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
     if constexpr (std::is_same<CellsContainer,
                                VectorContainer<typename CellsContainer::ElementIdentifier, CellType *>>::value)
     {
-      // As for the points, and in parallel: one heap object per cell is most of the
-      // time of an itk::Mesh output. The mesh owns the cells (itk::Mesh's default,
-      // CellsAllocatedDynamicallyCellByCell) from the start, so if an allocation fails
-      // the cells made are freed with the mesh (the others are null).
+      // As for the points. The cells are made in one block (BlockAllocatedCell)
+      // instead of one heap object each, which was most of the time of an
+      // itk::Mesh output; the mesh still owns and deletes each cell (its default,
+      // CellsAllocatedDynamicallyCellByCell), and the block goes with the last.
       auto container = CellsContainer::New();
       output->SetCells(container);
       auto & vector = container->CastToSTLContainer();
       vector.assign(polygons.size(), nullptr);
-      std::atomic<bool> failed{ false };
-      MeshExtraction::ParallelForBlocks(polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
-        try
+      try
+      {
+        if (polygonSize == 3)
         {
-          for (std::size_t f = begin; f < end; ++f)
-          {
-            vector[f] = makeCell(f);
-          }
+          BlockAllocatedCell<TriangleCell<CellType>>::MakeCells(polygons.size(), vector.begin());
         }
-        catch (...)
+        else
         {
-          failed = true;
+          BlockAllocatedCell<QuadrilateralCell<CellType>>::MakeCells(polygons.size(), vector.begin());
         }
-      });
-      if (failed)
+      }
+      catch (const std::bad_alloc &)
       {
         itkExceptionMacro("Out of memory while making the " << polygons.size() << " cells of the output mesh.");
       }
+      MeshExtraction::ParallelForBlocks(polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t f = begin; f < end; ++f)
+        {
+          for (unsigned int k = 0; k < polygonSize; ++k)
+          {
+            vector[f]->SetPointId(k, polygons[f][k]);
+          }
+        }
+      });
     }
     else
     {
@@ -523,8 +529,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   m_NumberOfNodes = m_Net.positions.size();
   m_NumberOfSplitCells = m_Net.numberOfSplitCells;
   this->UpdateProgress(0.3f);
-  const std::vector<MeshExtraction::Vec3> initial = m_Net.positions;
-  const auto                              relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations); // 3
+  const MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> initial = m_Net.positions;
+  const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations); // 3
   m_NumberOfIterations = relaxed.iterations;
   m_LastMaximumRelocation = relaxed.lastMaximumRelocation;
   Matrix<double, 3, 3> M;

@@ -17,6 +17,8 @@
  *=========================================================================*/
 #include "itkMeshExtractionBuffer.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #if defined(_WIN32)
@@ -34,23 +36,47 @@ namespace
 {
 constexpr std::size_t HugePage = std::size_t{ 2 } << 20;
 constexpr std::size_t Alignment = 64; // a cache line, for the small blocks
+
+bool
+IsLarge(std::size_t bytes)
+{
+  return bytes >= HugePage / 2;
+}
+
+std::size_t
+RoundedSize(std::size_t bytes)
+{
+  return (std::max<std::size_t>(bytes, 1) + Alignment - 1) / Alignment * Alignment;
+}
 } // namespace
 
 void *
 AllocateLargeBlock(std::size_t bytes)
 {
-  if (bytes == 0)
+  void * block = nullptr;
+  if (IsLarge(bytes))
   {
-    bytes = 1;
+    // Whole 2 MiB pages at a 2 MiB boundary inside one heap block (not
+    // posix_memalign, which would split the heap around each large block); the
+    // heap block's address sits just before the aligned one.
+    const std::size_t pages = (bytes + HugePage - 1) / HugePage * HugePage;
+    void *            raw = std::malloc(pages + HugePage);
+    if (raw == nullptr)
+    {
+      throw std::bad_alloc();
+    }
+    const auto start = reinterpret_cast<std::uintptr_t>(raw) + sizeof(void *);
+    block = reinterpret_cast<void *>((start + HugePage - 1) / HugePage * HugePage);
+    static_cast<void **>(block)[-1] = raw;
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    madvise(block, pages, MADV_HUGEPAGE); // advice only: ignored where unsupported
+#endif
+    return block;
   }
-  const bool large = bytes >= 2 * HugePage;
-  const auto alignment = large ? HugePage : Alignment;
-  const auto rounded = (bytes + alignment - 1) / alignment * alignment;
-  void *     block = nullptr;
 #if defined(_WIN32)
-  block = _aligned_malloc(rounded, alignment);
+  block = _aligned_malloc(RoundedSize(bytes), Alignment);
 #else
-  if (posix_memalign(&block, alignment, rounded) != 0)
+  if (posix_memalign(&block, Alignment, RoundedSize(bytes)) != 0)
   {
     block = nullptr;
   }
@@ -59,18 +85,21 @@ AllocateLargeBlock(std::size_t bytes)
   {
     throw std::bad_alloc();
   }
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (large)
-  {
-    madvise(block, rounded, MADV_HUGEPAGE); // advice only: ignored where unsupported
-  }
-#endif
   return block;
 }
 
 void
-ReleaseLargeBlock(void * block) noexcept
+ReleaseLargeBlock(void * block, std::size_t bytes) noexcept
 {
+  if (block == nullptr)
+  {
+    return;
+  }
+  if (IsLarge(bytes))
+  {
+    std::free(static_cast<void **>(block)[-1]);
+    return;
+  }
 #if defined(_WIN32)
   _aligned_free(block);
 #else

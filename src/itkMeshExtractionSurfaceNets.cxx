@@ -461,7 +461,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
   // to v in the other: each node gathers its links once as the successors of its
   // corners. Sort the few (insertion sort; drop repeats, which a consistent net has
   // none of) in parallel over blocks of nodes.
-  std::vector<std::uint32_t> degree(numberOfNodes + 1, 0);
+  LargeBlockVector<std::uint32_t> degree(numberOfNodes + 1, 0);
   for (const auto & quad : net.quads)
   {
     for (unsigned int k = 0; k < 4; ++k)
@@ -470,7 +470,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
     }
   }
   std::partial_sum(degree.begin(), degree.end(), degree.begin());
-  std::vector<std::uint32_t> all(degree.back());
+  LargeBlockVector<std::uint32_t> all(degree.back());
   {
     std::vector<std::uint32_t> cursor(degree.begin(), degree.end() - 1);
     for (const auto & quad : net.quads)
@@ -481,7 +481,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
       }
     }
   }
-  std::vector<std::uint32_t> unique(numberOfNodes + 1, 0);
+  LargeBlockVector<std::uint32_t> unique(numberOfNodes + 1, 0);
   ParallelForBlocks(
     numberOfNodes,
     BlockSize,
@@ -608,10 +608,14 @@ MakeSurfaceNetFaces(const SurfaceNet &                          net,
 }
 
 std::vector<Vec3>
-ToPhysical(const std::vector<Vec3> & index, const Vec3 & origin, const Matrix<double, 3, 3> & M, bool roundToFloat)
+ToPhysical(const Vec3 *                 index,
+           std::size_t                  numberOfPoints,
+           const Vec3 &                 origin,
+           const Matrix<double, 3, 3> & M,
+           bool                         roundToFloat)
 {
-  std::vector<Vec3> physical(index.size());
-  for (std::size_t i = 0; i < index.size(); ++i)
+  std::vector<Vec3> physical(numberOfPoints);
+  for (std::size_t i = 0; i < numberOfPoints; ++i)
   {
     Vec3 p = origin;
     for (unsigned int r = 0; r < 3; ++r)
@@ -992,7 +996,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
 
 std::size_t
 RemoveSurfaceNetSelfIntersections(SurfaceNet &                                net,
-                                  const std::vector<Vec3> &                   initial,
+                                  const LargeBlockVector<Vec3> &              initial,
                                   const Vec3 &                                origin,
                                   const Matrix<double, 3, 3> &                indexToPhysical,
                                   QuadSplit                                   split,

@@ -131,7 +131,7 @@ SurfaceNetTriangles::FillLinks(SurfaceNet & net) const
     }
   }
   std::partial_sum(count.begin(), count.end(), count.begin());
-  net.neighborStart = count;
+  net.neighborStart.assign(count.begin(), count.end());
   net.neighbors.assign(count.back(), 0);
   std::vector<std::uint32_t> cursor(count.begin(), count.end() - 1);
   for (const auto & t : triangles)
@@ -344,14 +344,14 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
 }
 
 std::size_t
-PullBackInvalidMoves(std::vector<Vec3> &          positions,
-                     const std::vector<Vec3> &    start,
-                     const SurfaceNetTriangles &  mesh,
-                     const Vec3 &                 origin,
-                     const Matrix<double, 3, 3> & M,
-                     double                       tolerance,
-                     bool                         roundToFloat,
-                     TriangleAABBTree *           sharedTree)
+PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
+                     const LargeBlockVector<Vec3> & start,
+                     const SurfaceNetTriangles &    mesh,
+                     const Vec3 &                   origin,
+                     const Matrix<double, 3, 3> &   M,
+                     double                         tolerance,
+                     bool                           roundToFloat,
+                     TriangleAABBTree *             sharedTree)
 {
   const auto &            triangles = mesh.triangles;
   const std::size_t       numberOfTriangles = triangles.size();

@@ -503,13 +503,13 @@ TEST(ParallelForBlocks, ScopedNumberOfWorkUnitsBoundsTheThreadsAndIsRestored)
 
 TEST(UninitializedArray, HoldsWhatIsWrittenAlignedForCacheLinesAndHugePages)
 {
-  // Small arrays are aligned to a cache line, large ones (4 MiB and more) to a 2 MiB
+  // Small arrays are aligned to a cache line, large ones (1 MiB and more) to a 2 MiB
   // page; every element keeps what was written; Allocate replaces the contents.
   UninitializedArray<std::uint32_t> empty;
   EXPECT_TRUE(empty.empty());
   EXPECT_EQ(empty.size(), 0u);
   EXPECT_EQ(empty.data(), nullptr);
-  for (const std::size_t n : { std::size_t{ 1 }, std::size_t{ 1000 }, std::size_t{ 3 } << 20 })
+  for (const std::size_t n : { std::size_t{ 1 }, std::size_t{ 1000 }, std::size_t{ 300000 }, std::size_t{ 3 } << 20 })
   {
     SCOPED_TRACE(n);
     UninitializedArray<std::uint32_t> a(n);
@@ -517,7 +517,7 @@ TEST(UninitializedArray, HoldsWhatIsWrittenAlignedForCacheLinesAndHugePages)
     ASSERT_FALSE(a.empty());
     const auto address = reinterpret_cast<std::uintptr_t>(a.data());
     EXPECT_EQ(address % 64, 0u);
-    if (n * sizeof(std::uint32_t) >= (std::size_t{ 4 } << 20))
+    if (n * sizeof(std::uint32_t) >= (std::size_t{ 1 } << 20))
     {
       EXPECT_EQ(address % (std::size_t{ 2 } << 20), 0u);
     }

@@ -17,6 +17,7 @@
  *=========================================================================*/
 #include "itkSurfaceNetsImageToMeshFilter.h"
 #include "itkBinaryMask3DMeshSource.h"
+#include "itkMeshExtractionCellBlock.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
@@ -26,6 +27,7 @@
 
 #include "gtest/gtest.h"
 
+#include <algorithm>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -599,7 +601,7 @@ TEST(SurfaceNetsImageToMeshFilter, SelfIntersectionRemovalHandsOutTheFacesOfTheF
       continue;
     }
     ME::BuildSurfaceNet(net, 0.01, 1);
-    const std::vector<ME::Vec3> initial = net.positions;
+    const ME::LargeBlockVector<ME::Vec3> initial = net.positions;
     for (std::size_t i = 0; i < net.positions.size(); ++i)
     {
       for (unsigned int k = 0; k < 3; ++k)
@@ -863,6 +865,64 @@ TEST(SurfaceNetsImageToMeshFilter, MeshOutputTriangulationsAndQuadsAgree)
   qe->SetTriangulation(Enums::Triangulation::Quadrilaterals);
   qe->Update();
   EXPECT_EQ(qe->GetOutput()->GetNumberOfFaces(), shortest.numberOfTriangles / 2);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, MeshCellsShareOneBlockThatGoesWithTheLastCell)
+{
+  using CellType = MeshType::CellType;
+  using Triangle = ME::BlockAllocatedCell<itk::TriangleCell<CellType>>;
+  using Quad = ME::BlockAllocatedCell<itk::QuadrilateralCell<CellType>>;
+  const std::size_t trianglesBefore = Triangle::GetNumberOfBlocks();
+  const std::size_t quadsBefore = Quad::GetNumberOfBlocks();
+  const Phantom     p = MakePhantom(ME::PhantomShape::Ellipsoid);
+  auto              filter = itk::SurfaceNetsImageToMeshFilter<FloatImage, MeshType>::New();
+  filter->SetInput(p.image);
+  filter->SetInsideIsAboveIsoValue(false);
+  filter->Update();
+  MeshType::Pointer mesh = filter->GetOutput();
+  mesh->DisconnectPipeline();
+  filter = nullptr;
+  ASSERT_GT(mesh->GetNumberOfCells(), 1000u);
+  EXPECT_EQ(Triangle::GetNumberOfBlocks(), trianglesBefore + 1);
+  // Ordinary triangle cells to the mesh and its users, and independent copies.
+  const CellType * first = mesh->GetCells()->ElementAt(0);
+  EXPECT_EQ(first->GetType(), itk::CellGeometryEnum::TRIANGLE_CELL);
+  EXPECT_NE(dynamic_cast<const itk::TriangleCell<CellType> *>(first), nullptr);
+  CellType::CellAutoPointer copy;
+  first->MakeCopy(copy);
+  const std::vector<MeshType::PointIdentifier> firstIds(first->PointIdsBegin(), first->PointIdsEnd());
+  // A cell replaced by the user is deleted by the mesh as any other; the block stays
+  // while any of its cells does.
+  CellType::CellAutoPointer replacement;
+  replacement.TakeOwnership(new itk::TriangleCell<CellType>);
+  replacement->SetPointIds(first->PointIdsBegin());
+  CellType * replaced = mesh->GetCells()->ElementAt(1);
+  mesh->GetCells()->InsertElement(1, replacement.ReleaseOwnership());
+  delete replaced;
+  EXPECT_EQ(Triangle::GetNumberOfBlocks(), trianglesBefore + 1);
+  mesh = nullptr; // deletes every cell: the block goes with the last
+  EXPECT_EQ(Triangle::GetNumberOfBlocks(), trianglesBefore);
+  EXPECT_TRUE(std::equal(firstIds.begin(), firstIds.end(), copy->PointIdsBegin()));
+
+  // Made in a block of many or alone, deleted in any order.
+  std::vector<CellType *> cells(1000);
+  Quad::MakeCells(cells.size(), cells.begin());
+  EXPECT_EQ(Quad::GetNumberOfBlocks(), quadsBefore + 1);
+  CellType * alone = new Quad;
+  EXPECT_EQ(Quad::GetNumberOfBlocks(), quadsBefore + 2);
+  std::mt19937 random(7);
+  std::shuffle(cells.begin(), cells.end(), random);
+  for (std::size_t i = 0; i + 1 < cells.size(); ++i)
+  {
+    cells[i]->SetPointId(3, i);
+    EXPECT_EQ(cells[i]->GetNumberOfPoints(), 4u);
+    delete cells[i];
+  }
+  EXPECT_EQ(Quad::GetNumberOfBlocks(), quadsBefore + 2);
+  delete alone;
+  EXPECT_EQ(Quad::GetNumberOfBlocks(), quadsBefore + 1);
+  delete cells.back();
+  EXPECT_EQ(Quad::GetNumberOfBlocks(), quadsBefore);
 }
 
 TEST(SurfaceNetsImageToMeshFilter, SegmentationRelaxedTowardTheGreyscaleIsoSurface)
