@@ -171,10 +171,10 @@ NetConstruction(benchmark::State & state)
       ME::ClassifySurfaceCells(image, ME::SurfaceNetsVoxelRange<float>::FromIsoValue(0.0, false), net, threads, false);
     const auto t1 = Clock::now();
     ME::BuildSurfaceNet(net, 0.01, threads);
-    const auto                                t2 = Clock::now();
-    std::vector<ME::Vec3>                     points;
-    std::vector<std::array<std::uint32_t, 4>> polygons;
-    unsigned int                              polygonSize = 3;
+    const auto                                         t2 = Clock::now();
+    std::vector<ME::Vec3>                              points;
+    ME::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
+    unsigned int                                       polygonSize = 3;
     ME::MakeSurfaceNetFaces(net, origin, M, ME::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
     const auto t3 = Clock::now();
     auto       ms = [](Clock::time_point from, Clock::time_point to) {

@@ -155,13 +155,13 @@ enum class QuadSplit : std::uint8_t
  * voxel-edge direction; then the other diagonal is used. `polygons` receives
  * triangles, or quads for KeepQuads. */
 MeshExtraction_EXPORT void
-MakeSurfaceNetFaces(const SurfaceNet &                          net,
-                    const Vec3 &                                origin,
-                    const Matrix<double, 3, 3> &                indexToPhysical,
-                    QuadSplit                                   split,
-                    std::vector<Vec3> &                         points,
-                    std::vector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                              polygonSize);
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Vec3 &                                     origin,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    std::vector<Vec3> &                              points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize);
 
 /** Node positions in physical space: origin + matrix * index, rounded to float when
  * the output mesh stores float coordinates (so that checks see what is written). */
@@ -220,13 +220,13 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
  * (split by `split`, which must not be KeepQuads), so that they need not be made
  * again; left empty when no faces of the final positions were made. */
 MeshExtraction_EXPORT std::size_t
-                      RemoveSurfaceNetSelfIntersections(SurfaceNet &                                net,
-                                                        const LargeBlockVector<Vec3> &              initial,
-                                                        const Vec3 &                                origin,
-                                                        const Matrix<double, 3, 3> &                indexToPhysical,
-                                                        QuadSplit                                   split,
-                                                        bool                                        roundToFloat = false,
-                                                        std::vector<std::array<std::uint32_t, 4>> * faces = nullptr);
+                      RemoveSurfaceNetSelfIntersections(SurfaceNet &                                     net,
+                                                        const LargeBlockVector<Vec3> &                   initial,
+                                                        const Vec3 &                                     origin,
+                                                        const Matrix<double, 3, 3> &                     indexToPhysical,
+                                                        QuadSplit                                        split,
+                                                        bool                                             roundToFloat = false,
+                                                        LargeBlockVector<std::array<std::uint32_t, 4>> * faces = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

@@ -224,7 +224,8 @@ protected:
   ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles);
   /** Stage 4: the faces (node indices) with the nodes in physical space, into the output mesh. */
   void
-  MakeOutputMesh(const std::vector<std::array<std::uint32_t, 4>> & polygons, unsigned int polygonSize);
+  MakeOutputMesh(const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                 unsigned int                                                           polygonSize);
   /** The index-to-physical matrix (direction * spacing), the physical point of the
    * buffer's first voxel, and the face split of the Triangulation setting. */
   void

@@ -377,8 +377,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetQuadSpli
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputMesh(
-  const std::vector<std::array<std::uint32_t, 4>> & polygons,
-  unsigned int                                      polygonSize)
+  const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+  unsigned int                                                           polygonSize)
 {
   using namespace MeshExtraction;
   Matrix<double, 3, 3> M;
@@ -539,8 +539,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   m_NumberOfNodesMovedBack = 0;
   // The faces (stage 4): those the self-intersection check made of the final
   // positions, or made here.
-  std::vector<std::array<std::uint32_t, 4>> polygons;
-  unsigned int                              polygonSize = 3;
+  MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
+  unsigned int                                                   polygonSize = 3;
   if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
   {
     m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(

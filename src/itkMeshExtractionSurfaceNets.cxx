@@ -527,13 +527,13 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
 }
 
 void
-MakeSurfaceNetFaces(const SurfaceNet &                          net,
-                    const Vec3 &                                origin,
-                    const Matrix<double, 3, 3> &                indexToPhysical,
-                    QuadSplit                                   split,
-                    std::vector<Vec3> &                         points,
-                    std::vector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                              polygonSize)
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Vec3 &                                     origin,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    std::vector<Vec3> &                              points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize)
 {
   points = ToPhysical(net.positions, origin, indexToPhysical);
   // A reflecting direction matrix turns counter-clockwise into clockwise.
@@ -995,27 +995,27 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
 }
 
 std::size_t
-RemoveSurfaceNetSelfIntersections(SurfaceNet &                                net,
-                                  const LargeBlockVector<Vec3> &              initial,
-                                  const Vec3 &                                origin,
-                                  const Matrix<double, 3, 3> &                indexToPhysical,
-                                  QuadSplit                                   split,
-                                  bool                                        roundToFloat,
-                                  std::vector<std::array<std::uint32_t, 4>> * faces)
+RemoveSurfaceNetSelfIntersections(SurfaceNet &                                     net,
+                                  const LargeBlockVector<Vec3> &                   initial,
+                                  const Vec3 &                                     origin,
+                                  const Matrix<double, 3, 3> &                     indexToPhysical,
+                                  QuadSplit                                        split,
+                                  bool                                             roundToFloat,
+                                  LargeBlockVector<std::array<std::uint32_t, 4>> * faces)
 {
   if (faces != nullptr)
   {
     faces->clear();
   }
-  std::vector<bool>                         moved(net.positions.size(), false);
-  std::vector<bool>                         movedLastRound(net.positions.size(), false);
-  std::vector<unsigned int>                 pulls(net.positions.size(), 0);
-  std::vector<Vec3>                         points;
-  std::vector<std::array<std::uint32_t, 4>> polygons;
-  unsigned int                              polygonSize = 3;
-  IndexedTriangleMesh                       mesh;
-  constexpr unsigned int                    HalvingsBeforeReset = 4;
-  constexpr unsigned int                    MaximumRounds = 64;
+  std::vector<bool>                              moved(net.positions.size(), false);
+  std::vector<bool>                              movedLastRound(net.positions.size(), false);
+  std::vector<unsigned int>                      pulls(net.positions.size(), 0);
+  std::vector<Vec3>                              points;
+  LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
+  unsigned int                                   polygonSize = 3;
+  IndexedTriangleMesh                            mesh;
+  constexpr unsigned int                         HalvingsBeforeReset = 4;
+  constexpr unsigned int                         MaximumRounds = 64;
   for (unsigned int round = 0;; ++round)
   {
     // Test the faces as they will be written.

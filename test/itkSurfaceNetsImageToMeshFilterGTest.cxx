@@ -535,12 +535,12 @@ TEST(SurfaceNetsImageToMeshFilter, StructuredSelfIntersectionSearchFindsExactlyW
         net.positions[i][k] = net.boxLower[i][k] + unit(rng) * (net.boxUpper[i][k] - net.boxLower[i][k]);
       }
     }
-    const bool                                rotate = trial % 2 == 1;
-    const itk::Matrix<double, 3, 3> &         M = rotate ? rotated : identity;
-    const ME::Vec3                            origin = rotate ? ME::MakeVec3(-12.5, 30.0, 7.25) : ME::MakeVec3(0, 0, 0);
-    std::vector<ME::Vec3>                     points;
-    std::vector<std::array<std::uint32_t, 4>> polygons;
-    unsigned int                              polygonSize = 3;
+    const bool                        rotate = trial % 2 == 1;
+    const itk::Matrix<double, 3, 3> & M = rotate ? rotated : identity;
+    const ME::Vec3                    origin = rotate ? ME::MakeVec3(-12.5, 30.0, 7.25) : ME::MakeVec3(0, 0, 0);
+    std::vector<ME::Vec3>             points;
+    ME::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
+    unsigned int                                       polygonSize = 3;
     ME::MakeSurfaceNetFaces(net, origin, M, ME::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
     ME::IndexedTriangleMesh mesh;
     mesh.points = ME::ToPhysical(net.positions, origin, M, rotate);
@@ -611,11 +611,11 @@ TEST(SurfaceNetsImageToMeshFilter, SelfIntersectionRemovalHandsOutTheFacesOfTheF
     }
     const bool          roundToFloat = trial % 2 == 1;
     const ME::QuadSplit split = trial % 4 < 2 ? ME::QuadSplit::ShortestDiagonal : ME::QuadSplit::Delaunay;
-    std::vector<std::array<std::uint32_t, 4>> faces;
+    ME::LargeBlockVector<std::array<std::uint32_t, 4>> faces;
     movedBack += ME::RemoveSurfaceNetSelfIntersections(net, initial, origin, M, split, roundToFloat, &faces);
-    std::vector<ME::Vec3>                     points;
-    std::vector<std::array<std::uint32_t, 4>> expected;
-    unsigned int                              polygonSize = 0;
+    std::vector<ME::Vec3>                              points;
+    ME::LargeBlockVector<std::array<std::uint32_t, 4>> expected;
+    unsigned int                                       polygonSize = 0;
     ME::MakeSurfaceNetFaces(net, origin, M, split, points, expected, polygonSize);
     ASSERT_EQ(polygonSize, 3u);
     ASSERT_EQ(faces, expected);
