@@ -172,7 +172,7 @@ NetConstruction(benchmark::State & state)
     const auto t1 = Clock::now();
     ME::BuildSurfaceNet(net, 0.01, threads);
     const auto                                         t2 = Clock::now();
-    std::vector<ME::Vec3>                              points;
+    ME::LargeBlockVector<ME::Vec3>                     points;
     ME::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
     unsigned int                                       polygonSize = 3;
     ME::MakeSurfaceNetFaces(net, origin, M, ME::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);

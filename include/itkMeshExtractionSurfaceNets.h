@@ -150,10 +150,10 @@ enum class QuadSplit : std::uint8_t
 };
 
 /** Faces of the net in physical space. `indexToPhysical` maps a continuous index
- * to a point: p = origin + matrix * index. A quad is split along the diagonal the
- * criterion prefers unless that would give a triangle facing away from the quad's
- * voxel-edge direction; then the other diagonal is used. `polygons` receives
- * triangles, or quads for KeepQuads. */
+ * to a point: p = origin + matrix * index (`points` receives the nodes' points). A
+ * quad is split along the diagonal the criterion prefers unless that would give a
+ * triangle facing away from the quad's voxel-edge direction; then the other
+ * diagonal is used. `polygons` receives triangles, or quads for KeepQuads. */
 MeshExtraction_EXPORT void
 MakeSurfaceNetFaces(const SurfaceNet &                               net,
                     const Vec3 &                                     origin,
@@ -162,15 +162,26 @@ MakeSurfaceNetFaces(const SurfaceNet &                               net,
                     std::vector<Vec3> &                              points,
                     LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
                     unsigned int &                                   polygonSize);
+/** The same, with the points in a huge-page block. */
+MeshExtraction_EXPORT void
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Vec3 &                                     origin,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    LargeBlockVector<Vec3> &                         points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize);
 
 /** Node positions in physical space: origin + matrix * index, rounded to float when
- * the output mesh stores float coordinates (so that checks see what is written). */
-MeshExtraction_EXPORT std::vector<Vec3>
-                      ToPhysical(const Vec3 *                 index,
-                                 std::size_t                  numberOfPoints,
-                                 const Vec3 &                 origin,
-                                 const Matrix<double, 3, 3> & indexToPhysical,
-                                 bool                         roundToFloat = false);
+ * the output mesh stores float coordinates (so that checks see what is written),
+ * into `physical[0 .. numberOfPoints)`. */
+MeshExtraction_EXPORT void
+ToPhysical(const Vec3 *                 index,
+           std::size_t                  numberOfPoints,
+           const Vec3 &                 origin,
+           const Matrix<double, 3, 3> & indexToPhysical,
+           bool                         roundToFloat,
+           Vec3 *                       physical);
 template <typename TAllocator>
 std::vector<Vec3>
 ToPhysical(const std::vector<Vec3, TAllocator> & index,
@@ -178,7 +189,9 @@ ToPhysical(const std::vector<Vec3, TAllocator> & index,
            const Matrix<double, 3, 3> &          indexToPhysical,
            bool                                  roundToFloat = false)
 {
-  return ToPhysical(index.data(), index.size(), origin, indexToPhysical, roundToFloat);
+  std::vector<Vec3> physical(index.size());
+  ToPhysical(index.data(), index.size(), origin, indexToPhysical, roundToFloat, physical.data());
+  return physical;
 }
 
 /** The self-intersecting face pairs of a SurfaceNet's triangles, found from the net's

@@ -384,7 +384,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
-  const std::vector<Vec3> points = ToPhysical(m_Net.positions, first, M);
+  LargeBlockVector<Vec3> points(m_Net.positions.size());
+  ToPhysical(m_Net.positions.data(), m_Net.positions.size(), first, M, false, points.data());
 
   OutputMeshType * output = this->GetOutput();
   output->Initialize();
@@ -555,7 +556,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
   if (polygons.empty())
   {
-    std::vector<MeshExtraction::Vec3> points;
+    MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> points;
     MeshExtraction::MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize); // 4
   }
   m_NumberOfSwaps = 0;

@@ -526,16 +526,17 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
   net.neighborStart = std::move(unique);
 }
 
-void
-MakeSurfaceNetFaces(const SurfaceNet &                               net,
-                    const Vec3 &                                     origin,
-                    const Matrix<double, 3, 3> &                     indexToPhysical,
-                    QuadSplit                                        split,
-                    std::vector<Vec3> &                              points,
-                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                                   polygonSize)
+namespace
 {
-  points = ToPhysical(net.positions, origin, indexToPhysical);
+/** MakeSurfaceNetFaces on the nodes' physical points. */
+void
+MakeFaces(const SurfaceNet &                               net,
+          const Matrix<double, 3, 3> &                     indexToPhysical,
+          QuadSplit                                        split,
+          const Vec3 *                                     points,
+          LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+          unsigned int &                                   polygonSize)
+{
   // A reflecting direction matrix turns counter-clockwise into clockwise.
   const bool reflect = vnl_det(indexToPhysical.GetVnlMatrix()) < 0.0;
   polygons.clear();
@@ -607,14 +608,54 @@ MakeSurfaceNetFaces(const SurfaceNet &                               net,
   });
 }
 
-std::vector<Vec3>
+template <typename TPoints>
+void
+MakeFacesWithPoints(const SurfaceNet &                               net,
+                    const Vec3 &                                     origin,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    TPoints &                                        points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize)
+{
+  points.resize(net.positions.size());
+  ToPhysical(net.positions.data(), net.positions.size(), origin, indexToPhysical, false, points.data());
+  MakeFaces(net, indexToPhysical, split, points.data(), polygons, polygonSize);
+}
+} // namespace
+
+void
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Vec3 &                                     origin,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    std::vector<Vec3> &                              points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize)
+{
+  MakeFacesWithPoints(net, origin, indexToPhysical, split, points, polygons, polygonSize);
+}
+
+void
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Vec3 &                                     origin,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    LargeBlockVector<Vec3> &                         points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize)
+{
+  MakeFacesWithPoints(net, origin, indexToPhysical, split, points, polygons, polygonSize);
+}
+
+void
 ToPhysical(const Vec3 *                 index,
            std::size_t                  numberOfPoints,
            const Vec3 &                 origin,
            const Matrix<double, 3, 3> & M,
-           bool                         roundToFloat)
+           bool                         roundToFloat,
+           Vec3 *                       physical)
 {
-  std::vector<Vec3> physical(numberOfPoints);
   for (std::size_t i = 0; i < numberOfPoints; ++i)
   {
     Vec3 p = origin;
@@ -631,7 +672,6 @@ ToPhysical(const Vec3 *                 index,
     }
     physical[i] = p;
   }
-  return physical;
 }
 
 bool
