@@ -10,7 +10,7 @@ Each method runs in a process of its own (--one-process: all in one).
 For every size and thread count (1 and all):
   net construction / vtkFlyingEdges3D           issue 5 target: <= 1
       ("net core": classification, net and faces into flat arrays, as FlyingEdges
-       makes them; "net": the filter to an itk::Mesh, with one TriangleCell per face)
+       makes them; "net": the filter to an itk::Mesh, one TriangleCell per face, in one block)
   SNA / vtkFlyingEdges3D
   SNERT / (FlyingEdges3D + windowed sinc)       issue 5 target: <= 2
   HQ / vtkFlyingEdges3D                          issue 6 target: <= 10
