@@ -149,29 +149,6 @@ enum class QuadSplit : std::uint8_t
   KeepQuads
 };
 
-/** Faces of the net in physical space. `indexToPhysical` maps a continuous index
- * to a point: p = origin + matrix * index (`points` receives the nodes' points). A
- * quad is split along the diagonal the criterion prefers unless that would give a
- * triangle facing away from the quad's voxel-edge direction; then the other
- * diagonal is used. `polygons` receives triangles, or quads for KeepQuads. */
-MeshExtraction_EXPORT void
-MakeSurfaceNetFaces(const SurfaceNet &                               net,
-                    const Vec3 &                                     origin,
-                    const Matrix<double, 3, 3> &                     indexToPhysical,
-                    QuadSplit                                        split,
-                    std::vector<Vec3> &                              points,
-                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                                   polygonSize);
-/** The same, with the points in a huge-page block. */
-MeshExtraction_EXPORT void
-MakeSurfaceNetFaces(const SurfaceNet &                               net,
-                    const Vec3 &                                     origin,
-                    const Matrix<double, 3, 3> &                     indexToPhysical,
-                    QuadSplit                                        split,
-                    LargeBlockVector<Vec3> &                         points,
-                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                                   polygonSize);
-
 /** Node positions in physical space: origin + matrix * index, rounded to float when
  * the output mesh stores float coordinates (so that checks see what is written),
  * into `physical[0 .. numberOfPoints)`. */
@@ -192,6 +169,35 @@ ToPhysical(const std::vector<Vec3, TAllocator> & index,
   std::vector<Vec3> physical(index.size());
   ToPhysical(index.data(), index.size(), origin, indexToPhysical, roundToFloat, physical.data());
   return physical;
+}
+
+/** Faces of the net, from its nodes' physical points `points[0 .. number of nodes)`
+ * (ToPhysical with `indexToPhysical`). A quad is split along the diagonal the
+ * criterion prefers unless that would give a triangle facing away from the quad's
+ * voxel-edge direction; then the other diagonal is used. `polygons` receives
+ * triangles, or quads for KeepQuads. */
+MeshExtraction_EXPORT void
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    const Vec3 *                                     points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize);
+/** The same, with the physical points (p = origin + matrix * index) made into
+ * `points` (a std::vector or a LargeBlockVector of Vec3). */
+template <typename TPoints>
+void
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Vec3 &                                     origin,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    TPoints &                                        points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize)
+{
+  points.resize(net.positions.size());
+  ToPhysical(net.positions.data(), net.positions.size(), origin, indexToPhysical, false, points.data());
+  MakeSurfaceNetFaces(net, indexToPhysical, split, points.data(), polygons, polygonSize);
 }
 
 /** The self-intersecting face pairs of a SurfaceNet's triangles, found from the net's

@@ -384,18 +384,20 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
-  LargeBlockVector<Vec3> points(m_Net.positions.size());
-  ToPhysical(m_Net.positions.data(), m_Net.positions.size(), first, M, false, points.data());
+  const std::size_t numberOfPoints = m_Net.positions.size();
 
   OutputMeshType * output = this->GetOutput();
   output->Initialize();
   using PointType = typename OutputMeshType::PointType;
   using CoordinateType = typename PointType::ValueType;
-  auto toPoint = [&points](std::size_t i) {
+  // Each node's physical point, made as it is stored (no array of them in between).
+  auto toPoint = [&](std::size_t i) {
+    Vec3 physical;
+    ToPhysical(&m_Net.positions[i], 1, first, M, false, &physical);
     PointType p;
     for (unsigned int d = 0; d < 3; ++d)
     {
-      p[d] = static_cast<CoordinateType>(points[i][d]);
+      p[d] = static_cast<CoordinateType>(physical[d]);
     }
     return p;
   };
@@ -407,8 +409,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
     // modified (a time stamp and an event) for every point.
     auto   container = PointsContainer::New();
     auto & vector = container->CastToSTLContainer();
-    vector.reserve(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
+    vector.reserve(numberOfPoints);
+    for (std::size_t i = 0; i < numberOfPoints; ++i)
     {
       vector.push_back(toPoint(i));
     }
@@ -416,8 +418,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   }
   else
   {
-    output->GetPoints()->Reserve(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
+    output->GetPoints()->Reserve(numberOfPoints);
+    for (std::size_t i = 0; i < numberOfPoints; ++i)
     {
       output->SetPoint(static_cast<typename OutputMeshType::PointIdentifier>(i), toPoint(i));
     }

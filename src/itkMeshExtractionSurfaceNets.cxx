@@ -526,16 +526,13 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
   net.neighborStart = std::move(unique);
 }
 
-namespace
-{
-/** MakeSurfaceNetFaces on the nodes' physical points. */
 void
-MakeFaces(const SurfaceNet &                               net,
-          const Matrix<double, 3, 3> &                     indexToPhysical,
-          QuadSplit                                        split,
-          const Vec3 *                                     points,
-          LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-          unsigned int &                                   polygonSize)
+MakeSurfaceNetFaces(const SurfaceNet &                               net,
+                    const Matrix<double, 3, 3> &                     indexToPhysical,
+                    QuadSplit                                        split,
+                    const Vec3 *                                     points,
+                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                    unsigned int &                                   polygonSize)
 {
   // A reflecting direction matrix turns counter-clockwise into clockwise.
   const bool reflect = vnl_det(indexToPhysical.GetVnlMatrix()) < 0.0;
@@ -606,46 +603,6 @@ MakeFaces(const SurfaceNet &                               net,
       polygons[2 * i + 1] = t1;
     }
   });
-}
-
-template <typename TPoints>
-void
-MakeFacesWithPoints(const SurfaceNet &                               net,
-                    const Vec3 &                                     origin,
-                    const Matrix<double, 3, 3> &                     indexToPhysical,
-                    QuadSplit                                        split,
-                    TPoints &                                        points,
-                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                                   polygonSize)
-{
-  points.resize(net.positions.size());
-  ToPhysical(net.positions.data(), net.positions.size(), origin, indexToPhysical, false, points.data());
-  MakeFaces(net, indexToPhysical, split, points.data(), polygons, polygonSize);
-}
-} // namespace
-
-void
-MakeSurfaceNetFaces(const SurfaceNet &                               net,
-                    const Vec3 &                                     origin,
-                    const Matrix<double, 3, 3> &                     indexToPhysical,
-                    QuadSplit                                        split,
-                    std::vector<Vec3> &                              points,
-                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                                   polygonSize)
-{
-  MakeFacesWithPoints(net, origin, indexToPhysical, split, points, polygons, polygonSize);
-}
-
-void
-MakeSurfaceNetFaces(const SurfaceNet &                               net,
-                    const Vec3 &                                     origin,
-                    const Matrix<double, 3, 3> &                     indexToPhysical,
-                    QuadSplit                                        split,
-                    LargeBlockVector<Vec3> &                         points,
-                    LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-                    unsigned int &                                   polygonSize)
-{
-  MakeFacesWithPoints(net, origin, indexToPhysical, split, points, polygons, polygonSize);
 }
 
 void

@@ -121,8 +121,9 @@ SurfaceNetTriangles::HasEdge(std::uint32_t, std::uint32_t v, std::uint32_t fromU
 void
 SurfaceNetTriangles::FillLinks(SurfaceNet & net) const
 {
-  const std::size_t          numberOfNodes = net.positions.size();
-  std::vector<std::uint32_t> count(numberOfNodes + 1, 0);
+  const std::size_t numberOfNodes = net.positions.size();
+  auto &            count = net.neighborStart;
+  count.assign(numberOfNodes + 1, 0);
   for (const auto & t : triangles)
   {
     for (unsigned int k = 0; k < 3; ++k)
@@ -131,7 +132,6 @@ SurfaceNetTriangles::FillLinks(SurfaceNet & net) const
     }
   }
   std::partial_sum(count.begin(), count.end(), count.begin());
-  net.neighborStart.assign(count.begin(), count.end());
   net.neighbors.assign(count.back(), 0);
   std::vector<std::uint32_t> cursor(count.begin(), count.end() - 1);
   for (const auto & t : triangles)
