@@ -39,6 +39,14 @@
 #  define itkVirtualGetNameOfClassMacro(thisClass) itkTypeMacroNoParent(thisClass)
 #endif
 
+/** Put after a lambda's parameter list: inline the lambda into its callers even
+ * where the compiler's size limits would not (for the per-node steps of hot loops). */
+#if defined(__GNUC__) || defined(__clang__)
+#  define MESHEXTRACTION_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#  define MESHEXTRACTION_ALWAYS_INLINE
+#endif
+
 #define MESHEXTRACTION_ITK_VERSION_AT_LEAST(major, minor)                                                              \
   ((ITK_VERSION_MAJOR > (major)) || (ITK_VERSION_MAJOR == (major) && ITK_VERSION_MINOR >= (minor)))
 

@@ -19,6 +19,7 @@
 #define itkMeshExtractionSurfaceNetsRelaxation_h
 
 #include "itkMeshExtractionBuffer.h"
+#include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSurfaceNets.h"
 #include "itkDiscreteGaussianDerivativeImageFunction.h"
@@ -547,7 +548,9 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     Vec3   G;
     Vec3   dI;
   };
-  auto sampleCell = [&](const Vec3 & p, std::size_t node, CellSample & sample) -> bool {
+  // (Both per-node steps below are forced inline: GCC 12 kept them as calls, which
+  // pass their vectors through memory; inlined, SNERT gained 1-2 % at 256^3.)
+  auto sampleCell = [&](const Vec3 & p, std::size_t node, CellSample & sample) MESHEXTRACTION_ALWAYS_INLINE -> bool {
     if (cache.empty())
     {
       return false;
@@ -646,7 +649,8 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   // = G.a/|g|; and the step to the iso-surface, M^-1 (n d) with d = (iso - I)/slope and
   // slope = dI.(M^-1 n) = dI.t/|g|, is t (iso - I)/(dI.t). The same vectors as the
   // general path below, with no square root and two divisions.
-  auto cachedStep = [&](const Vec3 & p, std::size_t node, const Vec3 & a, Vec3 & d) -> bool {
+  auto cachedStep = [&](const Vec3 & p, std::size_t node, const Vec3 & a, Vec3 & d)
+                      MESHEXTRACTION_ALWAYS_INLINE -> bool {
     CellSample sample;
     if (!sampleCell(p, node, sample))
     {
