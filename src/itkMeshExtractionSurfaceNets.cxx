@@ -779,7 +779,10 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
             }
           }
         }
-        std::sort(corners.begin(), corners.end(), [](const Corner & a, const Corner & b) { return a.node < b.node; });
+        if (endNode > firstNode + 1) // a cell with one node (nearly all) has one fan
+        {
+          std::sort(corners.begin(), corners.end(), [](const Corner & a, const Corner & b) { return a.node < b.node; });
+        }
         for (std::size_t first = 0; first < corners.size();)
         {
           std::size_t last = first;
@@ -827,16 +830,36 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
     numberOfWorkUnits);
   // Faces that are not degenerate (the others never intersect), decided once per face:
   // a face at a certified node is not (the certificate found it turning strictly).
-  std::vector<std::uint8_t> valid(mesh.triangles.size());
+  // And each face's bounding box, rounded outward to float: most pairs tested below
+  // are rejected by their boxes (three in five on a relaxed sphere), which then takes
+  // two boxes instead of six points. A float box holds the face's double box, so a
+  // pair it rejects is one the double boxes would have rejected.
+  struct FaceBox
+  {
+    float lower[3];
+    float upper[3];
+  };
+  std::vector<std::uint8_t>   valid(mesh.triangles.size());
+  UninitializedArray<FaceBox> faceBox(mesh.triangles.size());
   ParallelForBlocks(
     mesh.triangles.size(),
     8 * BlockSize,
     [&](std::size_t begin, std::size_t end, std::size_t) {
+      constexpr float infinity = std::numeric_limits<float>::infinity();
       for (std::size_t f = begin; f < end; ++f)
       {
         const auto & t = mesh.triangles[f];
         valid[f] =
           starNode[t[0]] || starNode[t[1]] || starNode[t[2]] || MeshFaceIsProper(mesh, static_cast<std::uint32_t>(f));
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          const double low = std::min({ mesh.points[t[0]][d], mesh.points[t[1]][d], mesh.points[t[2]][d] });
+          const double high = std::max({ mesh.points[t[0]][d], mesh.points[t[1]][d], mesh.points[t[2]][d] });
+          float        l = static_cast<float>(low);
+          float        h = static_cast<float>(high);
+          faceBox[f].lower[d] = static_cast<double>(l) > low ? std::nextafter(l, -infinity) : l;
+          faceBox[f].upper[d] = static_cast<double>(h) < high ? std::nextafter(h, infinity) : h;
+        }
       }
     },
     numberOfWorkUnits);
@@ -916,14 +939,10 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
           }
           if (!common)
           {
-            AxisAlignedBox boxP;
-            AxisAlignedBox boxQ;
-            for (unsigned int i = 0; i < 3; ++i)
-            {
-              boxP.Add(mesh.points[p[i]]);
-              boxQ.Add(mesh.points[q[i]]);
-            }
-            if (!boxP.Overlaps(boxQ))
+            const FaceBox & P = faceBox[f];
+            const FaceBox & Q = faceBox[g];
+            if (!(P.lower[0] <= Q.upper[0] && Q.lower[0] <= P.upper[0] && P.lower[1] <= Q.upper[1] &&
+                  Q.lower[1] <= P.upper[1] && P.lower[2] <= Q.upper[2] && Q.lower[2] <= P.upper[2]))
             {
               return;
             }
