@@ -22,6 +22,9 @@
 #include "itkMeshExtractionTriangleGeometry.h"
 #include "itkIntTypes.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace itk
 {
 namespace MeshExtraction
@@ -84,6 +87,28 @@ FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], co
  * static bound); false means "not certified", not "intersecting". */
 MeshExtraction_EXPORT bool
 FanIsEmbeddedStar(const Vec3 & v, const Vec3 * ring, unsigned int k);
+
+/** A face at a vertex, as seen from it: the face (v, next, last), counter-clockwise. */
+struct FanCorner
+{
+  std::uint32_t next;
+  std::uint32_t last;
+};
+
+/** The work arrays of CertifyFan, kept between calls. */
+struct FanScratch
+{
+  std::vector<std::uint8_t>  used;
+  std::vector<std::uint32_t> ring;
+  std::vector<Vec3>          ringPoints;
+};
+
+/** FanIsEmbeddedStar for the k faces at vertex v of a consistently oriented mesh,
+ * given in any order: they are chained into the fan's ring (each face (v, x, y) is
+ * followed by the one that starts at y), which must close after visiting every face
+ * once, through distinct vertices. False (not certified) otherwise. */
+MeshExtraction_EXPORT bool
+CertifyFan(const Vec3 * points, std::uint32_t v, const FanCorner * corners, std::size_t k, FanScratch & scratch);
 
 } // namespace MeshExtraction
 } // namespace itk

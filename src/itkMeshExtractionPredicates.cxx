@@ -619,5 +619,43 @@ FanIsEmbeddedStar(const Vec3 & v, const Vec3 * ring, unsigned int k)
   return true;
 }
 
+bool
+CertifyFan(const Vec3 * points, std::uint32_t v, const FanCorner * corners, std::size_t k, FanScratch & scratch)
+{
+  if (k == 0)
+  {
+    return false;
+  }
+  scratch.used.assign(k, 0);
+  scratch.ring.clear();
+  std::uint32_t at = corners[0].next;
+  bool          closed = true;
+  for (std::size_t step = 0; step < k && closed; ++step)
+  {
+    std::size_t e = 0;
+    while (e < k && (scratch.used[e] || corners[e].next != at))
+    {
+      ++e;
+    }
+    closed = e < k && std::find(scratch.ring.begin(), scratch.ring.end(), at) == scratch.ring.end();
+    if (closed)
+    {
+      scratch.used[e] = 1;
+      scratch.ring.push_back(at);
+      at = corners[e].last;
+    }
+  }
+  if (!closed || at != scratch.ring.front())
+  {
+    return false;
+  }
+  scratch.ringPoints.resize(k);
+  for (std::size_t i = 0; i < k; ++i)
+  {
+    scratch.ringPoints[i] = points[scratch.ring[i]];
+  }
+  return FanIsEmbeddedStar(points[v], scratch.ringPoints.data(), static_cast<unsigned int>(k));
+}
+
 } // namespace MeshExtraction
 } // namespace itk

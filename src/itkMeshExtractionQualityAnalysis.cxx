@@ -233,6 +233,52 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAAB
   });
   return SortedPairs(found);
 }
+/** Per point: 1 if its fan is certified (CertifyFan), from the faces at it in face
+ * order. All 0 if a face refers to a point that is not there. */
+std::vector<std::uint8_t>
+CertifiedFans(const IndexedTriangleMesh & mesh)
+{
+  const std::size_t         numberOfPoints = mesh.points.size();
+  std::vector<std::uint8_t> certified(numberOfPoints, 0);
+  std::vector<std::size_t>  start(numberOfPoints + 1, 0);
+  for (const auto & t : mesh.triangles)
+  {
+    for (std::uint32_t v : t)
+    {
+      if (v >= numberOfPoints)
+      {
+        return certified;
+      }
+      ++start[v + 1];
+    }
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<FanCorner> corners(start.back());
+  {
+    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+    for (const auto & t : mesh.triangles)
+    {
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        corners[cursor[t[j]]++] = FanCorner{ t[(j + 1) % 3], t[(j + 2) % 3] };
+      }
+    }
+  }
+  ParallelForBlocks(numberOfPoints, 4096, [&](std::size_t begin, std::size_t end, std::size_t) {
+    FanScratch scratch;
+    for (std::size_t v = begin; v < end; ++v)
+    {
+      certified[v] = CertifyFan(mesh.points.data(),
+                                static_cast<std::uint32_t>(v),
+                                corners.data() + start[v],
+                                start[v + 1] - start[v],
+                                scratch)
+                       ? 1
+                       : 0;
+    }
+  });
+  return certified;
+}
 } // namespace
 
 bool
@@ -350,8 +396,26 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
         usable[f] = probed[f] || valid(static_cast<std::uint32_t>(f));
       }
     });
+    // Vertices whose fan is certified (CertifyFan): two faces that meet at one have no
+    // other common point, or only their common edge, so they need no test. Nearly all
+    // the pairs the tree yields are faces with a common vertex (99.7 % on a relaxed
+    // sphere), and nearly every vertex of a valid mesh is certified.
+    const std::vector<std::uint8_t> certified = CertifiedFans(mesh);
+    auto                            meetAtCertifiedVertex = [&](std::uint32_t f, std::uint32_t g) {
+      const auto & t = mesh.triangles[f];
+      const auto & u = mesh.triangles[g];
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        if ((t[i] == u[0] || t[i] == u[1] || t[i] == u[2]) && certified[t[i]])
+        {
+          return true;
+        }
+      }
+      return false;
+    };
     return IntersectingOverlappingPairs(mesh, tree, [&](std::uint32_t f, std::uint32_t g) {
-      return f < n && g < n && (probed[f] || probed[g]) && usable[f] && usable[g] && boxes[f].Overlaps(boxes[g]);
+      return f < n && g < n && (probed[f] || probed[g]) && usable[f] && usable[g] && boxes[f].Overlaps(boxes[g]) &&
+             !meetAtCertifiedVertex(f, g);
     });
   }
   constexpr std::size_t                                             BlockSize = 2048;

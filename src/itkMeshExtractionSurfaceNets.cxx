@@ -747,13 +747,11 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
       struct Corner
       {
         std::uint32_t node; // a node of the cell
-        std::uint32_t next; // the face's vertex after it
-        std::uint32_t last; // and the one after that
+        FanCorner     face; // the face's vertices after it
       };
-      std::vector<Corner>        corners;
-      std::vector<std::uint8_t>  used;
-      std::vector<std::uint32_t> ring;
-      std::vector<Vec3>          ringPoints;
+      std::vector<Corner>    corners;
+      std::vector<FanCorner> fan;
+      FanScratch             scratch;
       for (std::size_t c = begin; c < end; ++c)
       {
         if (changed != nullptr && !activeCell[c])
@@ -774,7 +772,7 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
             {
               if (face[j] >= firstNode && face[j] < endNode)
               {
-                corners.push_back({ face[j], face[(j + 1) % 3], face[(j + 2) % 3] });
+                corners.push_back({ face[j], { face[(j + 1) % 3], face[(j + 2) % 3] } });
               }
             }
           }
@@ -790,39 +788,13 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
           {
             ++last;
           }
-          // The fan's ring in order: each face (v, x, y) is followed by the one that
-          // starts at y (the faces are consistently oriented). It must close after
-          // visiting every face once, through distinct vertices.
-          const std::size_t k = last - first;
-          used.assign(k, 0);
-          ring.clear();
-          std::uint32_t at = corners[first].next;
-          bool          closed = true;
-          for (std::size_t step = 0; step < k && closed; ++step)
+          fan.clear();
+          for (std::size_t at = first; at < last; ++at)
           {
-            std::size_t e = 0;
-            while (e < k && (used[e] || corners[first + e].next != at))
-            {
-              ++e;
-            }
-            closed = e < k && std::find(ring.begin(), ring.end(), at) == ring.end();
-            if (closed)
-            {
-              used[e] = 1;
-              ring.push_back(at);
-              at = corners[first + e].last;
-            }
+            fan.push_back(corners[at].face);
           }
-          if (closed && at == ring.front())
-          {
-            ringPoints.resize(k);
-            for (std::size_t i = 0; i < k; ++i)
-            {
-              ringPoints[i] = mesh.points[ring[i]];
-            }
-            starNode[corners[first].node] =
-              FanIsEmbeddedStar(mesh.points[corners[first].node], ringPoints.data(), static_cast<unsigned int>(k));
-          }
+          starNode[corners[first].node] =
+            CertifyFan(mesh.points.data(), corners[first].node, fan.data(), fan.size(), scratch) ? 1 : 0;
           first = last;
         }
       }

@@ -294,6 +294,40 @@ FanSelfIntersects(const Vec3 & v, const std::vector<Vec3> & ring)
 }
 } // namespace
 
+TEST(ExactPredicates, CertifyFanChainsTheFacesAtAVertexInAnyOrder)
+{
+  // Vertex 0 at the origin with a hexagon 1..6 around it, faces (0, i, i+1).
+  std::vector<Vec3> points{ MakeVec3(0, 0, 0) };
+  for (unsigned int i = 0; i < 6; ++i)
+  {
+    const double a = 2.0 * itk::Math::pi * i / 6;
+    points.push_back(MakeVec3(std::cos(a), std::sin(a), 0.1 * (i % 2)));
+  }
+  std::vector<FanCorner> fan;
+  for (std::uint32_t i = 0; i < 6; ++i)
+  {
+    fan.push_back({ 1 + i, 1 + (i + 1) % 6 });
+  }
+  FanScratch scratch;
+  EXPECT_TRUE(CertifyFan(points.data(), 0, fan.data(), fan.size(), scratch));
+  // Any order of the faces: the ring is chained, not read.
+  std::vector<FanCorner> shuffled = { fan[3], fan[0], fan[5], fan[1], fan[4], fan[2] };
+  EXPECT_TRUE(CertifyFan(points.data(), 0, shuffled.data(), shuffled.size(), scratch));
+  // An open fan (a face missing), a face turned over, a ring through a vertex twice,
+  // and no faces: not certified.
+  EXPECT_FALSE(CertifyFan(points.data(), 0, fan.data(), 5, scratch));
+  std::vector<FanCorner> flipped = fan;
+  std::swap(flipped[2].next, flipped[2].last);
+  EXPECT_FALSE(CertifyFan(points.data(), 0, flipped.data(), flipped.size(), scratch));
+  std::vector<FanCorner> twice = { { 1, 2 }, { 2, 3 }, { 3, 1 }, { 1, 4 }, { 4, 5 }, { 5, 1 } };
+  EXPECT_FALSE(CertifyFan(points.data(), 0, twice.data(), twice.size(), scratch));
+  EXPECT_FALSE(CertifyFan(points.data(), 0, fan.data(), 0, scratch));
+  // A spoke pulled across its neighbour: the ring closes but the fan folds.
+  std::vector<Vec3> folded = points;
+  folded[3] = MakeVec3(std::cos(2.0 * itk::Math::pi * 3.3 / 6), std::sin(2.0 * itk::Math::pi * 3.3 / 6), 0.1);
+  EXPECT_FALSE(CertifyFan(folded.data(), 0, fan.data(), fan.size(), scratch));
+}
+
 TEST(ExactPredicates, FanCertificateHoldsOnlyForFansThatGoAroundOnceWithoutFolds)
 {
   const Vec3 v = MakeVec3(0, 0, 0);
