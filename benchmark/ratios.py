@@ -4,6 +4,11 @@
     python3 benchmark/ratios.py BUILD/benchmark/MeshExtractionBenchmarks [--large]
     python3 benchmark/ratios.py BINARY --repetitions 3     (best of 3, on a busy machine)
     python3 benchmark/ratios.py --json results.json       (ratios of an earlier run)
+    python3 benchmark/ratios.py BINARY --rounds 3         (three runs in a row, and the range
+                                                           of each ratio over them)
+    python3 benchmark/ratios.py BINARY --rounds 3 --baseline OLD_BINARY
+                                                          (each round runs OLD, then BINARY:
+                                                           paired times new/old per method)
 
 Each method runs in a process of its own (--one-process: all in one).
 
@@ -124,6 +129,47 @@ def print_tables(times, context):
         print("{:>5}^3 {:>7} ".format(size, threads) + " ".join("{:>16}".format(c) for c in cells))
 
 
+def ratio_cells(row):
+    """{label: ratio} of one (size, threads) row."""
+    cells = {}
+    for label, numerator, denominator, _ in RATIOS:
+        if numerator in row and denominator in row and row[denominator] > 0:
+            cells[label] = row[numerator] / row[denominator]
+    return cells
+
+
+def print_summary(rounds):
+    """The range of each ratio with a target over the rounds, and how many met it."""
+    print("\nover {} rounds: range of each ratio (rounds that met the target)".format(len(rounds)))
+    targeted = [(label, target) for label, _, _, target in RATIOS if target is not None]
+    print("{:>6} {:>7} ".format("size", "threads") + " ".join("{:>22}".format(l) for l, _ in targeted))
+    for key in sorted(rounds[0]):
+        values = [ratio_cells(times.get(key, {})) for times in rounds]
+        cells = []
+        for label, target in targeted:
+            seen = [v[label] for v in values if label in v]
+            if not seen:
+                cells.append("-")
+                continue
+            met = sum(1 for x in seen if x <= target)
+            cells.append("{:.2f}-{:.2f} ({}/{})".format(min(seen), max(seen), met, len(seen)))
+        print("{:>5}^3 {:>7} ".format(*key) + " ".join("{:>22}".format(c) for c in cells))
+
+
+def print_paired(pairs):
+    """Per method: this build's time / the baseline's, in each round (run one after the other)."""
+    labels = [label for _, label in COLUMNS]
+    print("\npaired with the baseline, one after the other: time / baseline time per round")
+    print("{:>6} {:>7} ".format("size", "threads") + " ".join("{:>16}".format(l) for l in labels))
+    for key in sorted(pairs[0][1]):
+        cells = []
+        for label in labels:
+            r = ["{:.2f}".format(new[key][label] / old[key][label]) for old, new in pairs
+                 if key in old and key in new and label in old[key] and label in new[key] and old[key][label] > 0]
+            cells.append(" ".join(r) if r else "-")
+        print("{:>5}^3 {:>7} ".format(*key) + " ".join("{:>16}".format(c) for c in cells))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("binary", nargs="?", help="the MeshExtractionBenchmarks executable")
@@ -134,8 +180,33 @@ def main():
                         help="run all benchmarks in one process (by default each method gets its own)")
     parser.add_argument("--json", help="read the results of an earlier --benchmark_format=json run instead")
     parser.add_argument("--save", help="write the benchmark's JSON output to this file")
+    parser.add_argument("--rounds", type=int, default=1,
+                        help="run everything N times in a row and summarise the ratios' ranges")
+    parser.add_argument("--baseline", help="another MeshExtractionBenchmarks, run before this one in every round")
     parser.add_argument("extra", nargs="*", help="further arguments for the benchmark (after --)")
     args = parser.parse_args()
+    if args.binary and not args.json and (args.rounds > 1 or args.baseline):
+        rounds = []
+        pairs = []
+        for r in range(args.rounds):
+            old = None
+            if args.baseline:
+                print("round {}: baseline {}".format(r + 1, args.baseline))
+                old = collect(run_benchmarks(args.baseline, args.large, args.repetitions, args.extra,
+                                             args.one_process))
+            results = run_benchmarks(args.binary, args.large, args.repetitions, args.extra, args.one_process)
+            times = collect(results)
+            if not times:
+                sys.exit("no SurfaceNets/VTK extraction results found")
+            print("round {}: {}".format(r + 1, args.binary))
+            print_tables(times, results.get("context", {}))
+            rounds.append(times)
+            if old is not None:
+                pairs.append((old, times))
+        print_summary(rounds)
+        if pairs:
+            print_paired(pairs)
+        return
     if args.json:
         with open(args.json) as f:
             results = json.load(f)
