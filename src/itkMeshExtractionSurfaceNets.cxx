@@ -744,12 +744,6 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
     numberOfCells,
     BlockSize,
     [&](std::size_t begin, std::size_t end, std::size_t) {
-      struct Corner
-      {
-        std::uint32_t node; // a node of the cell
-        FanCorner     face; // the face's vertices after it
-      };
-      std::vector<Corner>    corners;
       std::vector<FanCorner> fan;
       FanScratch             scratch;
       for (std::size_t c = begin; c < end; ++c)
@@ -758,44 +752,29 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
         {
           continue;
         }
-        // The faces at the cell's nodes: every quad with a node in the cell.
+        // Each node's fan: its corners in the faces of the cell's quads (every quad
+        // with a node in the cell); one node in nearly every cell.
         const std::uint32_t firstNode = net.cells[c].firstNode;
         const std::uint32_t endNode =
           c + 1 < numberOfCells ? net.cells[c + 1].firstNode : static_cast<std::uint32_t>(net.positions.size());
-        corners.clear();
-        for (std::uint32_t k = start[c]; k < start[c + 1]; ++k)
+        for (std::uint32_t node = firstNode; node < endNode; ++node)
         {
-          for (unsigned int s = 0; s < 2; ++s)
+          fan.clear();
+          for (std::uint32_t k = start[c]; k < start[c + 1]; ++k)
           {
-            const auto & face = mesh.triangles[2 * quadsOfCell[k] + s];
-            for (unsigned int j = 0; j < 3; ++j)
+            for (unsigned int s = 0; s < 2; ++s)
             {
-              if (face[j] >= firstNode && face[j] < endNode)
+              const auto & face = mesh.triangles[2 * quadsOfCell[k] + s];
+              for (unsigned int j = 0; j < 3; ++j)
               {
-                corners.push_back({ face[j], { face[(j + 1) % 3], face[(j + 2) % 3] } });
+                if (face[j] == node)
+                {
+                  fan.push_back({ face[(j + 1) % 3], face[(j + 2) % 3] });
+                }
               }
             }
           }
-        }
-        if (endNode > firstNode + 1) // a cell with one node (nearly all) has one fan
-        {
-          std::sort(corners.begin(), corners.end(), [](const Corner & a, const Corner & b) { return a.node < b.node; });
-        }
-        for (std::size_t first = 0; first < corners.size();)
-        {
-          std::size_t last = first;
-          while (last < corners.size() && corners[last].node == corners[first].node)
-          {
-            ++last;
-          }
-          fan.clear();
-          for (std::size_t at = first; at < last; ++at)
-          {
-            fan.push_back(corners[at].face);
-          }
-          starNode[corners[first].node] =
-            CertifyFan(mesh.points.data(), corners[first].node, fan.data(), fan.size(), scratch) ? 1 : 0;
-          first = last;
+          starNode[node] = CertifyFan(mesh.points.data(), node, fan.data(), fan.size(), scratch) ? 1 : 0;
         }
       }
     },
