@@ -237,7 +237,9 @@ FindSurfaceNetSelfIntersections(const SurfaceNet &                              
  * (rounded to float with `roundToFloat`). Returns the number of nodes moved back.
  * With `faces`, the triangles of the final net as MakeSurfaceNetFaces makes them
  * (split by `split`, which must not be KeepQuads), so that they need not be made
- * again; left empty when no faces of the final positions were made. */
+ * again; left empty when no faces of the final positions were made. With `points`
+ * too, those faces' physical points (as ToPhysical with `roundToFloat` makes them),
+ * handed out with the faces and otherwise left empty. */
 MeshExtraction_EXPORT std::size_t
                       RemoveSurfaceNetSelfIntersections(SurfaceNet &                                     net,
                                                         const LargeBlockVector<Vec3> &                   initial,
@@ -245,7 +247,8 @@ MeshExtraction_EXPORT std::size_t
                                                         const Matrix<double, 3, 3> &                     indexToPhysical,
                                                         QuadSplit                                        split,
                                                         bool                                             roundToFloat = false,
-                                                        LargeBlockVector<std::array<std::uint32_t, 4>> * faces = nullptr);
+                                                        LargeBlockVector<std::array<std::uint32_t, 4>> * faces = nullptr,
+                                                        std::vector<Vec3> *                              points = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

@@ -222,10 +222,13 @@ protected:
   /** Stage 5 (high-quality mode): swaps and relaxation on the triangles. */
   void
   ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles);
-  /** Stage 4: the faces (node indices) with the nodes in physical space, into the output mesh. */
+  /** Stage 4: the faces (node indices) with the nodes in physical space, into the
+   * output mesh. `points`: the nodes' physical points if already made (the face
+   * split made them), else null. */
   void
   MakeOutputMesh(const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-                 unsigned int                                                           polygonSize);
+                 unsigned int                                                           polygonSize,
+                 const MeshExtraction::Vec3 *                                           points);
   /** The index-to-physical matrix (direction * spacing), the physical point of the
    * buffer's first voxel, and the face split of the Triangulation setting. */
   void

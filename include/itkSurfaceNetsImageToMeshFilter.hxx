@@ -30,7 +30,6 @@
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
 
-
 namespace itk
 {
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -378,7 +377,8 @@ template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputMesh(
   const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
-  unsigned int                                                           polygonSize)
+  unsigned int                                                           polygonSize,
+  const MeshExtraction::Vec3 *                                           points)
 {
   using namespace MeshExtraction;
   Matrix<double, 3, 3> M;
@@ -390,10 +390,18 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   output->Initialize();
   using PointType = typename OutputMeshType::PointType;
   using CoordinateType = typename PointType::ValueType;
-  // Each node's physical point, made as it is stored (no array of them in between).
+  // Each node's physical point: the face split's, or made as it is stored (no array
+  // of them in between).
   auto toPoint = [&](std::size_t i) {
     Vec3 physical;
-    ToPhysical(&m_Net.positions[i], 1, first, M, false, &physical);
+    if (points != nullptr)
+    {
+      physical = points[i];
+    }
+    else
+    {
+      ToPhysical(&m_Net.positions[i], 1, first, M, false, &physical);
+    }
     PointType p;
     for (unsigned int d = 0; d < 3; ++d)
     {
@@ -541,9 +549,13 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   this->GetGeometry(M, first);
   m_NumberOfNodesMovedBack = 0;
   // The faces (stage 4): those the self-intersection check made of the final
-  // positions, or made here.
+  // positions, or made here; and the nodes' physical points they were made with
+  // (rounded to float for a float mesh, as the output rounds them anyway), so that
+  // the output need not make them again.
   MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
   unsigned int                                                   polygonSize = 3;
+  std::vector<MeshExtraction::Vec3>                              checkedPoints;
+  MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>         points;
   if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
   {
     m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(
@@ -553,12 +565,12 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
       M,
       this->GetQuadSplit(),
       std::is_same<typename OutputMeshType::PointType::ValueType, float>::value,
-      &polygons); // 3b
+      &polygons,
+      &checkedPoints); // 3b
   }
   this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
   if (polygons.empty())
   {
-    MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> points;
     MeshExtraction::MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize); // 4
   }
   m_NumberOfSwaps = 0;
@@ -577,7 +589,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
     }
   }
   this->UpdateProgress(0.85f);
-  this->MakeOutputMesh(polygons, polygonSize);
+  // The high-quality mode moved the nodes: their points are made anew.
+  const MeshExtraction::Vec3 * made =
+    !checkedPoints.empty() ? checkedPoints.data() : (!points.empty() ? points.data() : nullptr);
+  this->MakeOutputMesh(polygons, polygonSize, m_HighQuality ? nullptr : made);
   this->UpdateProgress(1.0f);
 }
 

@@ -968,11 +968,16 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                                  
                                   const Matrix<double, 3, 3> &                     indexToPhysical,
                                   QuadSplit                                        split,
                                   bool                                             roundToFloat,
-                                  LargeBlockVector<std::array<std::uint32_t, 4>> * faces)
+                                  LargeBlockVector<std::array<std::uint32_t, 4>> * faces,
+                                  std::vector<Vec3> *                              facePoints)
 {
   if (faces != nullptr)
   {
     faces->clear();
+  }
+  if (facePoints != nullptr)
+  {
+    facePoints->clear();
   }
   std::vector<bool>                              moved(net.positions.size(), false);
   std::vector<bool>                              movedLastRound(net.positions.size(), false);
@@ -1023,6 +1028,10 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                                  
       if (faces != nullptr && split != QuadSplit::KeepQuads)
       {
         *faces = std::move(polygons); // the faces of the final positions
+        if (facePoints != nullptr)
+        {
+          *facePoints = std::move(mesh.points);
+        }
       }
       break;
     }
