@@ -364,28 +364,72 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
     numberOfCells,
     BlockSize,
     [&](std::size_t begin, std::size_t end, std::size_t block) {
-      std::size_t q = quadsPerBlock[block];
+      // Locals, so that the stores to the quads cannot alias them.
+      const SurfaceCell * const            cells = net.cells.data();
+      const std::uint32_t * const          rowStart = net.rowStart.data();
+      const std::int64_t                   sizeY = net.size[1];
+      const std::int64_t                   sizeZ = net.size[2];
+      std::array<std::uint32_t, 4> * const quads = net.quads.data();
+      std::uint8_t * const                 quadAxis = net.quadAxis.data();
+      std::size_t                          q = quadsPerBlock[block];
+      bool                                 missing = false;
       // The neighbours of cell (x, y, z) lie in its own row and the rows at y+1, z+1
       // and both, at x or x+1: one cursor per row, moving forward as x grows (the
       // cells are sorted), instead of a search per neighbour.
-      struct RowCursor
-      {
-        const SurfaceCell * at{ nullptr };
-        const SurfaceCell * end{ nullptr };
-      };
-      RowCursor    cursors[4]; // rows (dy, dz) = (0, 0), (1, 0), (0, 1), (1, 1)
-      std::int64_t currentRow = -1;
-      auto         find = [&](RowCursor & r, std::int64_t x) -> std::int64_t {
-        while (r.at != r.end && r.at->x < x)
+      // Cursors at and ends last of the rows (dy, dz) = (0, 0), (1, 0), (0, 1), (1, 1).
+      const SurfaceCell * at[4] = { nullptr, nullptr, nullptr, nullptr };
+      const SurfaceCell * last[4] = { nullptr, nullptr, nullptr, nullptr };
+      std::int64_t        currentRow = -1;
+      auto                find = [&](unsigned int k, std::int32_t x) -> const SurfaceCell * {
+        while (at[k] != last[k] && at[k]->x < x)
         {
-          ++r.at;
+          ++at[k];
         }
-        return r.at != r.end && r.at->x == x ? r.at - net.cells.data() : -1;
+        return at[k] != last[k] && at[k]->x == x ? at[k] : nullptr;
+      };
+      // The quad of the crossing voxel edge 4a+3 (along axis a, at offset 1 on the two
+      // other axes b and c); the neighbours one step along b, along c and along both
+      // are in rows kb, kc, kbc at x + dxb, dxc, dxbc.
+      auto quadAlong = [&](const SurfaceCell & c, auto axis) {
+        constexpr unsigned int a = decltype(axis)::value;
+        constexpr unsigned int e = 4 * a + 3;
+        constexpr unsigned int b = (a + 1) % 3;
+        constexpr unsigned int cAxis = (a + 2) % 3;
+        constexpr unsigned int low = (1u << b) | (1u << cAxis); // the edge's corners: low and 7
+        if ((((c.configuration >> low) ^ (c.configuration >> 7)) & 1u) == 0)
+        {
+          return;
+        }
+        constexpr unsigned int kb = (b == 1 ? 1 : 0) + (b == 2 ? 2 : 0);
+        constexpr unsigned int kc = (cAxis == 1 ? 1 : 0) + (cAxis == 2 ? 2 : 0);
+        const SurfaceCell *    cb = find(kb, c.x + (b == 0 ? 1 : 0));
+        const SurfaceCell *    cc = find(kc, c.x + (cAxis == 0 ? 1 : 0));
+        const SurfaceCell *    cbc = find(kb + kc, c.x + 1 - (a == 0 ? 1 : 0));
+        if (cb == nullptr || cc == nullptr || cbc == nullptr)
+        {
+          missing = true;
+          return;
+        }
+        const std::uint32_t n = c.firstNode + table.SheetOfEdge(c.configuration, c.faceRules, e);
+        const std::uint32_t nb = cb->firstNode + table.SheetOfEdge(cb->configuration, cb->faceRules, 4 * a + 2);
+        const std::uint32_t nc = cc->firstNode + table.SheetOfEdge(cc->configuration, cc->faceRules, 4 * a + 1);
+        const std::uint32_t nbc = cbc->firstNode + table.SheetOfEdge(cbc->configuration, cbc->faceRules, 4 * a + 0);
+        if ((c.configuration >> low) & 1u)
+        {
+          quads[q] = { nbc, nc, n, nb }; // outward along +a
+          quadAxis[q] = static_cast<std::uint8_t>(a);
+        }
+        else
+        {
+          quads[q] = { nb, n, nc, nbc }; // outward along -a
+          quadAxis[q] = static_cast<std::uint8_t>(a + 4);
+        }
+        ++q;
       };
       for (std::size_t i = begin; i < end; ++i)
       {
-        const SurfaceCell & c = net.cells[i];
-        const std::int64_t  row = net.RowOf(c.y, c.z);
+        const SurfaceCell & c = cells[i];
+        const std::int64_t  row = (std::int64_t{ c.z } + 1) * (sizeY + 1) + (std::int64_t{ c.y } + 1);
         if (row != currentRow)
         {
           currentRow = row;
@@ -393,60 +437,22 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
           {
             const std::int64_t dy = k & 1u;
             const std::int64_t dz = k >> 1;
-            cursors[k] = RowCursor{};
-            if (c.y + dy < net.size[1] && c.z + dz < net.size[2])
+            at[k] = last[k] = nullptr;
+            if (c.y + dy < sizeY && c.z + dz < sizeZ)
             {
-              const std::size_t r = static_cast<std::size_t>(net.RowOf(c.y + dy, c.z + dz));
-              cursors[k].at = net.cells.data() + net.rowStart[r];
-              cursors[k].end = net.cells.data() + net.rowStart[r + 1];
+              const std::size_t r = static_cast<std::size_t>(row + dz * (sizeY + 1) + dy);
+              at[k] = cells + rowStart[r];
+              last[k] = cells + rowStart[r + 1];
             }
           }
         }
-        for (unsigned int a = 0; a < 3; ++a)
-        {
-          const unsigned int e = 4 * a + 3;
-          if (!crosses(c.configuration, e))
-          {
-            continue;
-          }
-          const unsigned int b = (a + 1) % 3;
-          const unsigned int cAxis = (a + 2) % 3;
-          // Offsets (dx, dy, dz) of the neighbours one step along b, along c, and along both.
-          unsigned int ob[3] = { 0, 0, 0 };
-          unsigned int oc[3] = { 0, 0, 0 };
-          ob[b] = 1;
-          oc[cAxis] = 1;
-          auto neighbour = [&](unsigned int dx, unsigned int dy, unsigned int dz) {
-            return find(cursors[dy + 2 * dz], std::int64_t{ c.x } + dx);
-          };
-          const std::int64_t ib = neighbour(ob[0], ob[1], ob[2]);
-          const std::int64_t ic = neighbour(oc[0], oc[1], oc[2]);
-          const std::int64_t ibc = neighbour(ob[0] + oc[0], ob[1] + oc[1], ob[2] + oc[2]);
-          if (ib < 0 || ic < 0 || ibc < 0)
-          {
-            missingNeighbour = true;
-            continue;
-          }
-          const SurfaceCell & cb = net.cells[ib];
-          const SurfaceCell & cc = net.cells[ic];
-          const SurfaceCell & cbc = net.cells[ibc];
-          const std::uint32_t n = c.firstNode + table.SheetOfEdge(c.configuration, c.faceRules, e);
-          const std::uint32_t nb = cb.firstNode + table.SheetOfEdge(cb.configuration, cb.faceRules, 4 * a + 2);
-          const std::uint32_t nc = cc.firstNode + table.SheetOfEdge(cc.configuration, cc.faceRules, 4 * a + 1);
-          const std::uint32_t nbc = cbc.firstNode + table.SheetOfEdge(cbc.configuration, cbc.faceRules, 4 * a + 0);
-          const bool          lowInside = ((c.configuration >> table.edgeCorners[e][0]) & 1u) != 0;
-          if (lowInside)
-          {
-            net.quads[q] = { nbc, nc, n, nb }; // outward along +a
-            net.quadAxis[q] = static_cast<std::uint8_t>(a);
-          }
-          else
-          {
-            net.quads[q] = { nb, n, nc, nbc }; // outward along -a
-            net.quadAxis[q] = static_cast<std::uint8_t>(a + 4);
-          }
-          ++q;
-        }
+        quadAlong(c, std::integral_constant<unsigned int, 0>{});
+        quadAlong(c, std::integral_constant<unsigned int, 1>{});
+        quadAlong(c, std::integral_constant<unsigned int, 2>{});
+      }
+      if (missing)
+      {
+        missingNeighbour = true;
       }
     },
     numberOfWorkUnits);
