@@ -249,14 +249,17 @@ ClassifySurfaceNetsRow(const TPixel * row,
     {
       run([low, high](__m128 v) { return _mm_and_ps(_mm_cmpge_ps(v, low), _mm_cmple_ps(v, high)); });
     }
-    alignas(16) float l[4];
-    alignas(16) float h[4];
-    _mm_store_ps(l, _mm_min_ps(lo[0], lo[1]));
-    _mm_store_ps(h, _mm_max_ps(hi[0], hi[1]));
-    for (unsigned int k = 0; k < 4; ++k)
+    if constexpr (TExtremes)
     {
-      lowest = l[k] < lowest ? l[k] : lowest;
-      highest = h[k] > highest ? h[k] : highest;
+      alignas(16) float l[4];
+      alignas(16) float h[4];
+      _mm_store_ps(l, _mm_min_ps(lo[0], lo[1]));
+      _mm_store_ps(h, _mm_max_ps(hi[0], hi[1]));
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        lowest = l[k] < lowest ? l[k] : lowest;
+        highest = h[k] > highest ? h[k] : highest;
+      }
     }
     hasNaN = hasNaN || _mm_movemask_ps(nan) != 0;
   }
