@@ -88,6 +88,12 @@ SphereDistanceMap(unsigned int n)
 
 using Clock = std::chrono::steady_clock;
 
+// WarmUpNote: every extraction benchmark runs its method once, untimed, before the timed
+// runs (what Google Benchmark 1.8's MinWarmUpTime does; Debian bookworm has 1.7). The
+// first run in a process takes up to twice as long, for every method alike (fresh pages,
+// cold caches and branch predictors), and in a benchmark of 30-50 runs it would move
+// the mean by several percent at random.
+
 /** Wall-clock seconds since `start`: the extraction benchmarks time each run by hand
  * (UseManualTime), so that freeing the previous output is not part of it. */
 double
@@ -133,6 +139,7 @@ SurfaceNets(benchmark::State & state, Relaxation relaxation, bool highQuality)
     return MeshType::Pointer(filter->GetOutput());
   };
   std::size_t triangles = 0;
+  extract(); // the warm-up run (see WarmUpNote)
   for (auto _ : state)
   {
     const auto        start = Clock::now();
@@ -164,10 +171,11 @@ NetConstruction(benchmark::State & state)
     }
   }
   const ME::Vec3 origin = ME::ToVec3(image->GetOrigin());
-  std::size_t    triangles = 0;
-  double         best[3] = { 1e9, 1e9, 1e9 }; // fastest classification, net and faces, ms
-  for (auto _ : state)
-  {
+  auto           ms = [](Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double, std::milli>(to - from).count();
+  };
+  // One run: its triangles, and the times of its stages and in all (ms).
+  auto run = [&](double times[4]) {
     const auto     start = Clock::now();
     ME::SurfaceNet net;
     const auto     statistics =
@@ -180,15 +188,25 @@ NetConstruction(benchmark::State & state)
     unsigned int                                       polygonSize = 3;
     ME::MakeSurfaceNetFaces(net, origin, M, ME::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
     const auto t3 = Clock::now();
-    auto       ms = [](Clock::time_point from, Clock::time_point to) {
-      return std::chrono::duration<double, std::milli>(to - from).count();
-    };
-    best[0] = std::min(best[0], ms(start, t1));
-    best[1] = std::min(best[1], ms(t1, t2));
-    best[2] = std::min(best[2], ms(t2, t3));
-    state.SetIterationTime(ms(start, t3) / 1000.0);
+    times[0] = ms(start, t1);
+    times[1] = ms(t1, t2);
+    times[2] = ms(t2, t3);
+    times[3] = ms(start, t3);
     benchmark::DoNotOptimize(statistics.insideVoxels);
-    triangles = polygons.size();
+    return polygons.size();
+  };
+  double best[3] = { 1e9, 1e9, 1e9 }; // fastest classification, net and faces, ms
+  double times[4];
+  run(times); // the warm-up run (see WarmUpNote)
+  std::size_t triangles = 0;
+  for (auto _ : state)
+  {
+    triangles = run(times);
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      best[k] = std::min(best[k], times[k]);
+    }
+    state.SetIterationTime(times[3] / 1000.0);
   }
   SetCounters(state, n, triangles, threads);
   state.counters["classify_ms"] = best[0];
@@ -209,6 +227,7 @@ VTKMethod(benchmark::State & state, const char * key)
   input.insideIsAboveIsoValue = false;
   input.numberOfWorkUnits = threads;
   vtkSMPTools::Initialize(static_cast<int>(threads));
+  benchmark::DoNotOptimize(method.run(input)); // the warm-up run (see WarmUpNote)
   for (auto _ : state)
   {
     const auto                          start = Clock::now();
