@@ -540,7 +540,14 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   m_NumberOfNodes = m_Net.positions.size();
   m_NumberOfSplitCells = m_Net.numberOfSplitCells;
   this->UpdateProgress(0.3f);
-  const MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> initial = m_Net.positions;
+  // The start positions, toward which the self-intersection check moves nodes back
+  // (a copy only when that check runs).
+  const bool checkMoves = m_PreventSelfIntersections && relaxation != RelaxationEnum::None;
+  MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> initial;
+  if (checkMoves)
+  {
+    initial = m_Net.positions;
+  }
   const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations); // 3
   m_NumberOfIterations = relaxed.iterations;
   m_LastMaximumRelocation = relaxed.lastMaximumRelocation;
@@ -556,7 +563,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   unsigned int                                                   polygonSize = 3;
   std::vector<MeshExtraction::Vec3>                              checkedPoints;
   MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>         points;
-  if (m_PreventSelfIntersections && relaxation != RelaxationEnum::None)
+  if (checkMoves)
   {
     m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(
       m_Net,
