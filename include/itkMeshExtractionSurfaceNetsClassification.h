@@ -23,6 +23,7 @@
 #include "itkImage.h"
 #include "itkMath.h"
 
+#include <algorithm>
 #include <atomic>
 #if defined(__SSE2__)
 #  include <emmintrin.h>
@@ -345,7 +346,8 @@ ClassifySurfaceCells(const TImage * image,
     [&](std::size_t begin, std::size_t end, std::size_t block) {
       SurfaceNetsClassificationStatistics & stats = statistics[block];
       // A slice of inside flags and, per voxel row, the first and last inside x
-      // (last < first: no inside voxel). Row y of a slice starts at flags + (y+1) * stride + 1:
+      // (last < first: no inside voxel) and whether every voxel between them is
+      // inside (one run). Row y of a slice starts at flags + (y+1) * stride + 1:
       // rows y = -1 and y = ny are all zero, as are slices beyond the image.
       struct Slice
       {
@@ -353,6 +355,7 @@ ClassifySurfaceCells(const TImage * image,
         std::vector<std::uint8_t> flags;
         std::vector<std::int64_t> first;
         std::vector<std::int64_t> last;
+        std::vector<std::uint8_t> oneRun;
       };
       Slice slices[2];
       for (auto & s : slices)
@@ -360,6 +363,7 @@ ClassifySurfaceCells(const TImage * image,
         s.flags.assign(static_cast<std::size_t>((ny + 2) * stride), 0);
         s.first.assign(static_cast<std::size_t>(ny + 2), 0);
         s.last.assign(static_cast<std::size_t>(ny + 2), -1);
+        s.oneRun.assign(static_cast<std::size_t>(ny + 2), 1);
       }
       auto fill = [&](Slice & s, std::int64_t z) {
         const bool wasEmpty = s.z < 0 || s.z >= nz;
@@ -371,6 +375,7 @@ ClassifySurfaceCells(const TImage * image,
             std::fill(s.flags.begin(), s.flags.end(), std::uint8_t{ 0 });
             std::fill(s.first.begin(), s.first.end(), 0);
             std::fill(s.last.begin(), s.last.end(), -1);
+            std::fill(s.oneRun.begin(), s.oneRun.end(), std::uint8_t{ 1 });
           }
           return;
         }
@@ -423,10 +428,17 @@ ClassifySurfaceCells(const TImage * image,
                 flags[x] = 0;
               }
             }
+            insideInRow = static_cast<std::size_t>(std::count(flags, flags + nx, std::uint8_t{ 1 }));
           }
-          // First and last inside voxel, 8 flags at a time (the padding is zero).
+          // First and last inside voxel, 8 flags at a time (the padding is zero);
+          // nothing to search in an empty or a full row.
           std::int64_t first = 0;
           std::int64_t last = -1;
+          if (insideInRow == static_cast<std::size_t>(nx))
+          {
+            last = nx - 1;
+          }
+          else if (insideInRow > 0)
           {
             const std::int64_t words = (nx + 7) / 8;
             auto               word = [flags](std::int64_t w) {
@@ -460,6 +472,7 @@ ClassifySurfaceCells(const TImage * image,
           }
           s.first[y + 1] = first;
           s.last[y + 1] = last;
+          s.oneRun[y + 1] = static_cast<std::uint8_t>(static_cast<std::int64_t>(insideInRow) == last - first + 1);
           if (count)
           {
             stats.insideVoxels += insideInRow;
@@ -488,40 +501,31 @@ ClassifySurfaceCells(const TImage * image,
           const std::uint8_t * rows[4];
           std::int64_t         xFirst = std::numeric_limits<std::int64_t>::max();
           std::int64_t         xLast = -1;
+          // Where all four rows are one run each: the columns in all four runs,
+          // [allFirst, allLast], whose cells between are inside the object.
+          std::int64_t allFirst = -1;
+          std::int64_t allLast = std::numeric_limits<std::int64_t>::max();
+          bool         runs = true;
           for (unsigned int r = 0; r < 4; ++r)
           {
-            const Slice & s = *slicesOfRow[r];
+            const Slice &      s = *slicesOfRow[r];
+            const std::int64_t first = s.first[ys[r] + 1];
+            const std::int64_t last = s.last[ys[r] + 1];
             rows[r] = s.flags.data() + (ys[r] + 1) * stride + 1;
-            if (s.last[ys[r] + 1] >= s.first[ys[r] + 1])
+            if (last >= first)
             {
-              xFirst = std::min(xFirst, s.first[ys[r] + 1]);
-              xLast = std::max(xLast, s.last[ys[r] + 1]);
+              xFirst = std::min(xFirst, first);
+              xLast = std::max(xLast, last);
             }
+            runs = runs && last >= first && s.oneRun[ys[r] + 1];
+            allFirst = std::max(allFirst, first);
+            allLast = std::min(allLast, last);
           }
           if (xLast < 0)
           {
             continue; // no inside voxel: no surface cell in this row
           }
-          // Column codes (4 bits: the four rows) of voxel columns xFirst-1 .. xLast+1.
           std::uint8_t * code = columns.data() + 1; // code[x], x >= -1
-          std::int64_t   column = xFirst - 1;
-#if defined(__SSE2__)
-          for (; column + 16 <= xLast + 2; column += 16)
-          {
-            auto load = [column](const std::uint8_t * r) {
-              return _mm_loadu_si128(reinterpret_cast<const __m128i *>(r + column));
-            };
-            const __m128i r01 = _mm_or_si128(load(rows[0]), _mm_add_epi8(load(rows[1]), load(rows[1])));
-            const __m128i r23 = _mm_or_si128(load(rows[2]), _mm_add_epi8(load(rows[3]), load(rows[3])));
-            const __m128i c = _mm_or_si128(r01, _mm_slli_epi16(r23, 2)); // flags are 0 or 1: no carries
-            _mm_storeu_si128(reinterpret_cast<__m128i *>(code + column), c);
-          }
-#endif
-          for (; column <= xLast + 1; ++column)
-          {
-            code[column] = static_cast<std::uint8_t>(rows[0][column] | (rows[1][column] << 1) | (rows[2][column] << 2) |
-                                                     (rows[3][column] << 3));
-          }
           // Cell x (columns x, x+1) is a surface cell unless its 8 corners agree.
           auto addCell = [&](std::int64_t x) {
             const unsigned int a = code[x];
@@ -532,36 +536,69 @@ ClassifySurfaceCells(const TImage * image,
                               static_cast<std::uint8_t>(spread[a] | (spread[b] << 1)),
                               0 });
           };
-          std::int64_t x = xFirst - 1;
+          // The surface cells among cells x0 .. x1, in order.
+          auto scan = [&](std::int64_t x0, std::int64_t x1) {
+            // Column codes (4 bits: the four rows) of voxel columns x0 .. x1+1.
+            std::int64_t column = x0;
 #if defined(__SSE2__)
-          // 16 cells at a time: runs of cells inside the object (columns 15) or
-          // outside it (0) are skipped with one comparison each.
-          {
-            const __m128i zero = _mm_setzero_si128();
-            const __m128i full = _mm_set1_epi8(15);
-            for (; x + 16 <= xLast + 1; x += 16)
+            for (; column + 16 <= x1 + 2; column += 16)
             {
-              const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(code + x));
-              const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(code + x + 1));
-              const __m128i uniform =
-                _mm_or_si128(_mm_cmpeq_epi8(_mm_or_si128(a, b), zero), _mm_cmpeq_epi8(_mm_and_si128(a, b), full));
-              unsigned int mixed = ~static_cast<unsigned int>(_mm_movemask_epi8(uniform)) & 0xFFFFu;
-              while (mixed != 0)
+              auto load = [column](const std::uint8_t * r) {
+                return _mm_loadu_si128(reinterpret_cast<const __m128i *>(r + column));
+              };
+              const __m128i r01 = _mm_or_si128(load(rows[0]), _mm_add_epi8(load(rows[1]), load(rows[1])));
+              const __m128i r23 = _mm_or_si128(load(rows[2]), _mm_add_epi8(load(rows[3]), load(rows[3])));
+              const __m128i c = _mm_or_si128(r01, _mm_slli_epi16(r23, 2)); // flags are 0 or 1: no carries
+              _mm_storeu_si128(reinterpret_cast<__m128i *>(code + column), c);
+            }
+#endif
+            for (; column <= x1 + 1; ++column)
+            {
+              code[column] = static_cast<std::uint8_t>(rows[0][column] | (rows[1][column] << 1) |
+                                                       (rows[2][column] << 2) | (rows[3][column] << 3));
+            }
+            std::int64_t x = x0;
+#if defined(__SSE2__)
+            // 16 cells at a time: runs of cells inside the object (columns 15) or
+            // outside it (0) are skipped with one comparison each.
+            {
+              const __m128i zero = _mm_setzero_si128();
+              const __m128i full = _mm_set1_epi8(15);
+              for (; x + 16 <= x1 + 1; x += 16)
               {
-                addCell(x + CountTrailingZeros(mixed));
-                mixed &= mixed - 1;
+                const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(code + x));
+                const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(code + x + 1));
+                const __m128i uniform =
+                  _mm_or_si128(_mm_cmpeq_epi8(_mm_or_si128(a, b), zero), _mm_cmpeq_epi8(_mm_and_si128(a, b), full));
+                unsigned int mixed = ~static_cast<unsigned int>(_mm_movemask_epi8(uniform)) & 0xFFFFu;
+                while (mixed != 0)
+                {
+                  addCell(x + CountTrailingZeros(mixed));
+                  mixed &= mixed - 1;
+                }
               }
             }
-          }
 #endif
-          for (; x <= xLast; ++x)
-          {
-            const unsigned int a = code[x];
-            const unsigned int b = code[x + 1];
-            if ((a | b) != 0 && (a & b) != 15)
+            for (; x <= x1; ++x)
             {
-              addCell(x);
+              const unsigned int a = code[x];
+              const unsigned int b = code[x + 1];
+              if ((a | b) != 0 && (a & b) != 15)
+              {
+                addCell(x);
+              }
             }
+          };
+          if (runs && allFirst < allLast)
+          {
+            // Cells allFirst .. allLast-1 have all 8 corners inside: only the two ends
+            // of the row can hold surface cells.
+            scan(xFirst - 1, allFirst - 1);
+            scan(allLast, xLast);
+          }
+          else
+          {
+            scan(xFirst - 1, xLast);
           }
         }
       }

@@ -365,7 +365,9 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
   // Every cell (x, y, z in -1 .. N-1, voxels beyond the image outside) whose 8
   // corners disagree, with its configuration, in (z, y, x) order; and the
   // statistics, on random volumes of awkward sizes (rows shorter and longer than
-  // the 16-voxel vector step, with NaN voxels in some).
+  // the 16-voxel vector step, with NaN voxels in some), and on distance maps whose
+  // inside is a ball, its outside or a shell (voxel rows of one run, two runs, full
+  // or empty, where the classification skips the cells inside all four runs).
   std::mt19937                          rng(11);
   std::uniform_real_distribution<float> value(0.0f, 1.0f);
   const unsigned int                    sizes[][3] = { { 1, 1, 1 },  { 3, 2, 1 },  { 7, 5, 4 },  { 16, 3, 3 },
@@ -373,15 +375,29 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
   for (int trial = 0; trial < 64; ++trial)
   {
     SCOPED_TRACE(trial);
-    const auto & size = sizes[trial % 8];
-    auto         image = MakeImage<FloatImage>(size[0], size[1], size[2]);
-    const double density = 0.1 + 0.8 * value(rng);
-    const bool   withNaN = trial % 5 == 4;
-    const auto   n = image->GetBufferedRegion().GetNumberOfPixels();
-    float *      buffer = image->GetBufferPointer();
+    const unsigned int solidSizes[][3] = { { 40, 9, 8 }, { 17, 12, 10 }, { 64, 5, 6 }, { 33, 16, 3 } };
+    const bool         solid = trial % 4 == 1;
+    const auto &       size = solid ? solidSizes[(trial / 4) % 4] : sizes[trial % 8];
+    auto               image = MakeImage<FloatImage>(size[0], size[1], size[2]);
+    const double       density = 0.1 + 0.8 * value(rng);
+    const bool         withNaN = trial % 5 == 4;
+    const auto         n = image->GetBufferedRegion().GetNumberOfPixels();
+    float *            buffer = image->GetBufferPointer();
+    // A solid trial: the distance to a random centre, over the longest side.
+    const float centre[3] = { (1.4f * value(rng) - 0.2f) * size[0],
+                              (1.4f * value(rng) - 0.2f) * size[1],
+                              (1.4f * value(rng) - 0.2f) * size[2] };
+    const float longest = static_cast<float>(std::max({ size[0], size[1], size[2] }));
     for (std::size_t i = 0; i < n; ++i)
     {
       buffer[i] = value(rng);
+      if (solid)
+      {
+        const float d[3] = { static_cast<float>(i % size[0]) - centre[0],
+                             static_cast<float>((i / size[0]) % size[1]) - centre[1],
+                             static_cast<float>(i / (size[0] * size[1])) - centre[2] };
+        buffer[i] = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / longest;
+      }
       if (withNaN && value(rng) < 0.05f)
       {
         buffer[i] = std::numeric_limits<float>::quiet_NaN();
