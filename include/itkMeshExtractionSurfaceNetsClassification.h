@@ -333,11 +333,18 @@ ClassifySurfaceCells(const TImage * image,
 
   // Rows of flags are padded: one zero byte before x = 0 and enough after nx - 1 for
   // 8-byte reads, so that cells x = -1 .. nx-1 read columns x and x + 1 without tests.
-  const std::int64_t                    stride = ((nx + 2 + 7) / 8 + 1) * 8;
-  const std::size_t                     numberOfLayers = static_cast<std::size_t>(nz + 1); // cell layers z = -1 .. nz-1
-  const std::size_t                     layersPerBlock = std::max<std::size_t>(1, numberOfLayers / 64);
-  const std::size_t                     numberOfBlocks = (numberOfLayers + layersPerBlock - 1) / layersPerBlock;
-  std::vector<std::vector<SurfaceCell>> found(numberOfBlocks);
+  const std::int64_t stride = ((nx + 2 + 7) / 8 + 1) * 8;
+  const std::size_t  numberOfLayers = static_cast<std::size_t>(nz + 1); // cell layers z = -1 .. nz-1
+  // A few blocks of layers per work unit: each block reads the slice below its first
+  // layer again and sets up its own two slices of flags.
+  unsigned int workUnits = numberOfWorkUnits != 0 ? numberOfWorkUnits : ThreadNumberOfWorkUnits();
+  if (workUnits == 0)
+  {
+    workUnits = MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
+  }
+  const std::size_t layersPerBlock = std::max<std::size_t>(1, numberOfLayers / (4 * std::size_t{ workUnits }));
+  const std::size_t numberOfBlocks = (numberOfLayers + layersPerBlock - 1) / layersPerBlock;
+  std::vector<std::vector<SurfaceCell>>            found(numberOfBlocks);
   std::vector<SurfaceNetsClassificationStatistics> statistics(numberOfBlocks);
 
   ParallelForBlocks(
