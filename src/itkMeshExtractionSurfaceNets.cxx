@@ -44,6 +44,21 @@ CornerIndex(const unsigned int offset[3])
 {
   return offset[0] + 2 * offset[1] + 4 * offset[2];
 }
+
+/** The low corner of a cell's voxel edge 4a+3, along axis a at offset 1 on the two
+ * other axes (its high corner is 7). */
+constexpr unsigned int
+UpperEdgeLowCorner(unsigned int a)
+{
+  return 7u - (1u << a);
+}
+
+/** Whether that edge crosses the surface: its two corners differ. */
+constexpr bool
+CrossesUpperEdge(unsigned int configuration, unsigned int a)
+{
+  return (((configuration >> UpperEdgeLowCorner(a)) ^ (configuration >> 7)) & 1u) != 0;
+}
 } // namespace
 
 SurfaceNetsCellTable::SurfaceNetsCellTable()
@@ -338,9 +353,6 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
   constexpr std::size_t    BlockSize = 4096;
   const std::size_t        numberOfBlocks = (numberOfCells + BlockSize - 1) / BlockSize;
   std::vector<std::size_t> quadsPerBlock(numberOfBlocks + 1, 0);
-  auto                     crosses = [&table](std::uint8_t configuration, unsigned int e) {
-    return table.SheetOfEdge(configuration, 0, e) >= 0;
-  };
   ParallelForBlocks(
     numberOfCells,
     BlockSize,
@@ -350,7 +362,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
       {
         for (unsigned int a = 0; a < 3; ++a)
         {
-          count += crosses(net.cells[i].configuration, 4 * a + 3) ? 1 : 0;
+          count += CrossesUpperEdge(net.cells[i].configuration, a) ? 1 : 0;
         }
       }
       quadsPerBlock[block + 1] = count;
@@ -395,8 +407,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
         constexpr unsigned int e = 4 * a + 3;
         constexpr unsigned int b = (a + 1) % 3;
         constexpr unsigned int cAxis = (a + 2) % 3;
-        constexpr unsigned int low = (1u << b) | (1u << cAxis); // the edge's corners: low and 7
-        if ((((c.configuration >> low) ^ (c.configuration >> 7)) & 1u) == 0)
+        if (!CrossesUpperEdge(c.configuration, a))
         {
           return;
         }
@@ -414,7 +425,7 @@ BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
         const std::uint32_t nb = cb->firstNode + table.SheetOfEdge(cb->configuration, cb->faceRules, 4 * a + 2);
         const std::uint32_t nc = cc->firstNode + table.SheetOfEdge(cc->configuration, cc->faceRules, 4 * a + 1);
         const std::uint32_t nbc = cbc->firstNode + table.SheetOfEdge(cbc->configuration, cbc->faceRules, 4 * a + 0);
-        if ((c.configuration >> low) & 1u)
+        if ((c.configuration >> UpperEdgeLowCorner(a)) & 1u)
         {
           quads[q] = { nbc, nc, n, nb }; // outward along +a
           quadAxis[q] = static_cast<std::uint8_t>(a);
