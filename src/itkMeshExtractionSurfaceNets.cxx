@@ -1015,7 +1015,19 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                                  
                         points,
                         polygons,
                         polygonSize);
-    mesh.points = roundToFloat ? ToPhysical(net.positions, origin, indexToPhysical, true) : std::move(points);
+    if (roundToFloat)
+    {
+      // The points as ToPhysical with roundToFloat makes them: the face split's, each
+      // coordinate rounded (not computed a second time).
+      for (auto & p : points)
+      {
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          p[d] = static_cast<double>(static_cast<float>(p[d]));
+        }
+      }
+    }
+    mesh.points = std::move(points);
     mesh.triangles.resize(polygons.size());
     for (std::size_t f = 0; f < polygons.size(); ++f)
     {
