@@ -186,6 +186,8 @@ def main():
     parser.add_argument("extra", nargs="*", help="further arguments for the benchmark (after --)")
     args = parser.parse_args()
     if args.binary and not args.json and (args.rounds > 1 or args.baseline):
+        if args.save:
+            parser.error("--save writes the JSON of a single run: not with --rounds or --baseline")
         rounds = []
         pairs = []
         for r in range(args.rounds):
