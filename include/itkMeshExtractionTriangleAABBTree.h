@@ -19,6 +19,7 @@
 #define itkMeshExtractionTriangleAABBTree_h
 
 #include "MeshExtractionExport.h"
+#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 
 #include <cstdint>
@@ -114,6 +115,9 @@ struct AxisAlignedBox
   }
 };
 
+/** One box per triangle, on huge pages where large (LargeBlockVector). */
+using AxisAlignedBoxArray = LargeBlockVector<AxisAlignedBox>;
+
 inline AxisAlignedBox
 TriangleBox(const IndexedTriangleMesh & mesh, std::uint32_t triangle)
 {
@@ -152,9 +156,9 @@ public:
    * tree that stays valid while its vertices move within that range (overlap
    * queries only; FindNearest needs exact boxes). */
   void
-  Build(const IndexedTriangleMesh &         mesh,
-        const std::vector<std::uint32_t> *  subset = nullptr,
-        const std::vector<AxisAlignedBox> * boxes = nullptr);
+  Build(const IndexedTriangleMesh &        mesh,
+        const std::vector<std::uint32_t> * subset = nullptr,
+        const AxisAlignedBoxArray *        boxes = nullptr);
 
   /** Keep the tree's shape but give its primitives new boxes (one per triangle of
    * the mesh, as in Build) and recompute the nodes' boxes bottom-up: O(n), for
@@ -163,7 +167,7 @@ public:
    * children); they only slow down if the boxes wander far. Requires a tree built over
    * all triangles of a mesh with boxes.size() triangles (else throws). */
   void
-  Refit(const IndexedTriangleMesh & mesh, const std::vector<AxisAlignedBox> & boxes);
+  Refit(const IndexedTriangleMesh & mesh, const AxisAlignedBoxArray & boxes);
 
   bool
   IsEmpty() const
@@ -411,9 +415,11 @@ private:
   };
 
   const IndexedTriangleMesh * m_Mesh{ nullptr };
-  std::vector<Node>           m_Nodes;
-  std::vector<std::uint32_t>  m_Triangles; ///< triangle of each primitive slot
-  std::vector<AxisAlignedBox> m_Boxes;     ///< box of each primitive slot
+  // Large arrays on huge pages (LargeBlockVector): a first-touched 4 KiB page costs
+  // about 15 us on a VM, and the arrays of a 222,000-triangle tree span 4,000 pages.
+  LargeBlockVector<Node>          m_Nodes;
+  LargeBlockVector<std::uint32_t> m_Triangles; ///< triangle of each primitive slot
+  AxisAlignedBoxArray             m_Boxes;     ///< box of each primitive slot
 };
 
 } // namespace MeshExtraction

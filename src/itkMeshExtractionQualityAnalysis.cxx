@@ -238,9 +238,9 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAAB
 std::vector<std::uint8_t>
 CertifiedFans(const IndexedTriangleMesh & mesh)
 {
-  const std::size_t         numberOfPoints = mesh.points.size();
-  std::vector<std::uint8_t> certified(numberOfPoints, 0);
-  std::vector<std::size_t>  start(numberOfPoints + 1, 0);
+  const std::size_t             numberOfPoints = mesh.points.size();
+  std::vector<std::uint8_t>     certified(numberOfPoints, 0);
+  LargeBlockVector<std::size_t> start(numberOfPoints + 1, 0);
   for (const auto & t : mesh.triangles)
   {
     for (std::uint32_t v : t)
@@ -253,9 +253,9 @@ CertifiedFans(const IndexedTriangleMesh & mesh)
     }
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<FanCorner> corners(start.back());
+  LargeBlockVector<FanCorner> corners(start.back());
   {
-    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+    LargeBlockVector<std::size_t> cursor(start.begin(), start.end() - 1);
     for (const auto & t : mesh.triangles)
     {
       for (unsigned int j = 0; j < 3; ++j)
@@ -387,8 +387,8 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
     // itself visits each overlapping pair once, cheaper than one query per probe.
     // The faces' own boxes (the tree's may be larger) and validity, once per face
     // instead of once per pair.
-    std::vector<AxisAlignedBox> boxes(n);
-    std::vector<std::uint8_t>   usable(n);
+    AxisAlignedBoxArray       boxes(n);
+    std::vector<std::uint8_t> usable(n);
     ParallelForBlocks(n, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t f = begin; f < end; ++f)
       {
@@ -414,8 +414,9 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
       return false;
     };
     return IntersectingOverlappingPairs(mesh, tree, [&](std::uint32_t f, std::uint32_t g) {
-      return f < n && g < n && (probed[f] || probed[g]) && usable[f] && usable[g] && boxes[f].Overlaps(boxes[g]) &&
-             !meetAtCertifiedVertex(f, g);
+      // The common-vertex test first: it turns away nearly every pair.
+      return f < n && g < n && !meetAtCertifiedVertex(f, g) && (probed[f] || probed[g]) && usable[f] && usable[g] &&
+             boxes[f].Overlaps(boxes[g]);
     });
   }
   constexpr std::size_t                                             BlockSize = 2048;

@@ -34,7 +34,7 @@ constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
 /** A tree over all triangles of `mesh` with `boxes`: built the first time, refitted
  * (same shape, new boxes) when it already holds that many triangles. */
 void
-BuildOrRefit(TriangleAABBTree & tree, const IndexedTriangleMesh & mesh, const std::vector<AxisAlignedBox> & boxes)
+BuildOrRefit(TriangleAABBTree & tree, const IndexedTriangleMesh & mesh, const AxisAlignedBoxArray & boxes)
 {
   if (!tree.IsEmpty() && tree.GetNumberOfTriangles() == mesh.triangles.size())
   {
@@ -62,7 +62,7 @@ SurfaceNetTriangles::BuildConnectivity(std::size_t numberOfPoints)
     std::uint64_t edge;
     std::uint32_t halfEdge;
   };
-  std::vector<Key> keys(3 * n);
+  LargeBlockVector<Key> keys(3 * n);
   for (std::uint32_t f = 0; f < n; ++f)
   {
     for (std::uint32_t k = 0; k < 3; ++k)
@@ -239,7 +239,7 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
   check.triangles = mesh.triangles;
   // Positions are fixed here: a swapped pair, swapped or not, stays inside the box of
   // its four corners, so one tree serves every check below.
-  std::vector<AxisAlignedBox> boxes(mesh.triangles.size());
+  AxisAlignedBoxArray boxes(mesh.triangles.size());
   for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
   {
     boxes[f] = TriangleBox(check, f);
@@ -353,10 +353,11 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
                      bool                           roundToFloat,
                      TriangleAABBTree *             sharedTree)
 {
-  const auto &            triangles = mesh.triangles;
-  const std::size_t       numberOfTriangles = triangles.size();
-  const std::vector<Vec3> startPhysical = ToPhysical(start, origin, M, roundToFloat);
-  std::vector<Vec3>       startNormals(numberOfTriangles);
+  const auto &           triangles = mesh.triangles;
+  const std::size_t      numberOfTriangles = triangles.size();
+  LargeBlockVector<Vec3> startPhysical(start.size());
+  ToPhysical(start.data(), start.size(), origin, M, roundToFloat, startPhysical.data());
+  LargeBlockVector<Vec3> startNormals(numberOfTriangles);
   for (std::size_t f = 0; f < numberOfTriangles; ++f)
   {
     const auto & t = triangles[f];
@@ -379,7 +380,7 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   check.points = ToPhysical(positions, origin, M, roundToFloat);
   // Nodes only move back toward `start`: a tree of boxes around both positions of
   // every triangle serves every round.
-  std::vector<AxisAlignedBox> boxes(numberOfTriangles);
+  AxisAlignedBoxArray boxes(numberOfTriangles);
   for (std::uint32_t f = 0; f < numberOfTriangles; ++f)
   {
     for (std::uint32_t v : triangles[f])
@@ -399,13 +400,15 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   {
     changedVertex[v] = positions[v] != start[v]; // `start` is valid: only moved nodes matter
   }
+  std::vector<std::uint32_t> candidateList; // kept from round to round
   for (unsigned int round = 0; round < 64; ++round)
   {
     if (round > 0)
     {
       check.points = ToPhysical(positions, origin, M, roundToFloat);
     }
-    std::vector<std::uint32_t> candidates;
+    std::vector<std::uint32_t> & candidates = candidateList;
+    candidates.clear();
     for (std::uint32_t f = 0; f < numberOfTriangles; ++f)
     {
       const auto & t = triangles[f];

@@ -32,7 +32,7 @@ namespace
  * the stable passes leave equal codes in slot order, as std::sort of the pairs does.
  * About 4x faster than std::sort for a few hundred thousand keys. */
 void
-SortKeys(std::vector<std::pair<std::uint64_t, std::uint32_t>> & keys)
+SortKeys(LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> & keys)
 {
   const std::size_t n = keys.size();
   if (n < 2048)
@@ -40,8 +40,8 @@ SortKeys(std::vector<std::pair<std::uint64_t, std::uint32_t>> & keys)
     std::sort(keys.begin(), keys.end());
     return;
   }
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> buffer(n);
-  std::vector<std::uint32_t>                           count(1u << 16);
+  LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> buffer(n);
+  std::vector<std::uint32_t>                                count(1u << 16);
   for (unsigned int shift = 0; shift < 64; shift += 16)
   {
     std::fill(count.begin(), count.end(), 0u);
@@ -70,9 +70,9 @@ SortKeys(std::vector<std::pair<std::uint64_t, std::uint32_t>> & keys)
 } // namespace
 
 void
-TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
-                        const std::vector<std::uint32_t> *  subset,
-                        const std::vector<AxisAlignedBox> * givenBoxes)
+TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
+                        const std::vector<std::uint32_t> * subset,
+                        const AxisAlignedBoxArray *        givenBoxes)
 {
   m_Mesh = &mesh;
   m_Nodes.clear();
@@ -80,7 +80,7 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
   m_Boxes.clear();
   if (subset != nullptr)
   {
-    m_Triangles = *subset;
+    m_Triangles.assign(subset->begin(), subset->end());
   }
   else
   {
@@ -92,8 +92,8 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
   {
     return;
   }
-  std::vector<AxisAlignedBox> boxes(n);
-  std::vector<Vec3>           centroids(n);
+  AxisAlignedBoxArray    boxes(n);
+  LargeBlockVector<Vec3> centroids(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     boxes[i] = givenBoxes ? (*givenBoxes)[m_Triangles[i]] : TriangleBox(mesh, m_Triangles[i]);
@@ -121,7 +121,7 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
     x = (x | (x << 2)) & 0x1249249249249249ULL;
     return x;
   };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     std::uint64_t code = 0;
@@ -135,7 +135,7 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
     keys[i] = { code, static_cast<std::uint32_t>(i) };
   }
   SortKeys(keys);
-  std::vector<std::uint32_t> order(n);
+  LargeBlockVector<std::uint32_t> order(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     order[i] = keys[i].second;
@@ -193,8 +193,8 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &         mesh,
     tasks.push_back({ left, task.begin, middle, task.depth + 1 });
     tasks.push_back({ left + 1, middle, task.end, task.depth + 1 });
   }
-  std::vector<std::uint32_t>  triangles(n);
-  std::vector<AxisAlignedBox> sortedBoxes(n);
+  LargeBlockVector<std::uint32_t> triangles(n);
+  AxisAlignedBoxArray             sortedBoxes(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     triangles[i] = m_Triangles[order[i]];
@@ -229,7 +229,7 @@ TriangleAABBTree::FitNodeBoxes()
 }
 
 void
-TriangleAABBTree::Refit(const IndexedTriangleMesh & mesh, const std::vector<AxisAlignedBox> & boxes)
+TriangleAABBTree::Refit(const IndexedTriangleMesh & mesh, const AxisAlignedBoxArray & boxes)
 {
   if (boxes.size() != mesh.triangles.size() || m_Triangles.size() != boxes.size())
   {

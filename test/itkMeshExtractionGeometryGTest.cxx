@@ -440,7 +440,7 @@ TEST(TriangleAABBTree, RefitAfterMovesAndSwapsAnswersLikeAFreshBuild)
   IndexedTriangleMesh mesh = MakeIcosphere(3, 5.0);
   TriangleAABBTree    refitted;
   auto                boxesOf = [](const IndexedTriangleMesh & m) {
-    std::vector<AxisAlignedBox> boxes(m.triangles.size());
+    AxisAlignedBoxArray boxes(m.triangles.size());
     for (std::uint32_t f = 0; f < m.triangles.size(); ++f)
     {
       boxes[f] = TriangleBox(m, f);
