@@ -19,6 +19,7 @@
 #define itkMeshExtractionQualityAnalysis_h
 
 #include "MeshExtractionExport.h"
+#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 
 #include <array>
@@ -185,13 +186,44 @@ MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
 FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries = nullptr);
 
 class TriangleAABBTree;
+
+/** What a search over most of a mesh's faces (FindSelfIntersections with a tree and
+ * a cache) keeps for the next search on the same mesh, after its vertices moved a
+ * little and a few faces changed vertices (as relaxation and edge swaps do).
+ *
+ * The caller sets `margin` (> 0, in the mesh's units) and builds the tree with boxes
+ * that contain each face's own box grown by margin / 2 on every side. A full search
+ * (a "rebuild") keeps the points and faces, and the pairs of faces without a common
+ * vertex whose grown boxes overlap ("near pairs"). A later search calls a face
+ * "moved" if it changed vertices or one of its vertices is 0.45 margin or more from
+ * where it was. Two faces that did not move were more than a margin apart at the
+ * rebuild unless they are a near pair, and each moved less than half of it, so they
+ * cannot meet now: only near pairs, faces that meet at a vertex whose fan is not
+ * certified now (CertifyFan), and pairs with a moved face (one tree query per moved
+ * face) are tested. The pairs found are exactly those of the full search. When more
+ * than a quarter of the faces moved, the search is a rebuild again. */
+struct SelfIntersectionCache
+{
+  double margin{ 0.0 };
+
+  LargeBlockVector<Vec3>                                            points;
+  LargeBlockVector<TriangleIndices>                                 triangles;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> nearPairs; ///< in blocks
+  std::size_t                                                       numberOfRebuilds{ 0 };
+  std::size_t                                                       numberOfIncrementalSearches{ 0 };
+};
+
 /** The same, with a tree built by the caller over all triangles with boxes that
  * contain the triangles' current positions (see TriangleAABBTree::Build): repeated
- * checks while vertices move inside those boxes need no rebuild. */
+ * checks while vertices move inside those boxes need no rebuild. With `cache` (the
+ * same one on every call for one mesh), a search over more than a quarter of the
+ * faces tests only what may have changed since the last full one
+ * (SelfIntersectionCache); the result is the same. */
 MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
                       FindSelfIntersections(const IndexedTriangleMesh &        mesh,
                                             const std::vector<std::uint32_t> & queries,
-                                            const TriangleAABBTree &           tree);
+                                            const TriangleAABBTree &           tree,
+                                            SelfIntersectionCache *            cache = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

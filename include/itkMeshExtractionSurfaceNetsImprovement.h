@@ -31,6 +31,7 @@ namespace itk
 namespace MeshExtraction
 {
 class TriangleAABBTree;
+struct SelfIntersectionCache;
 
 /** \brief The triangles of a SurfaceNet with the twin of every half-edge, for edge
  * swapping. Half-edge 3f + k runs from triangles[f][k] to triangles[f][k+1]; the
@@ -101,7 +102,9 @@ MeshExtraction_EXPORT std::size_t
  * neighbour where they did not at `start`, or intersect another triangle: halve
  * their move once, then reset it, until no such triangle is left. Checks run on the
  * physical positions that will be written (`roundToFloat`). Returns the number of
- * nodes pulled back. `tree`: as for UndoIntersectingSwaps (built once, then refitted). */
+ * nodes pulled back. `tree`: as for UndoIntersectingSwaps (built once, then refitted);
+ * `cache`: kept between the calls for one mesh, so that a check after small moves
+ * tests only what may have changed (SelfIntersectionCache; same result). */
 MeshExtraction_EXPORT std::size_t
                       PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
                                            const LargeBlockVector<Vec3> & start,
@@ -110,7 +113,8 @@ MeshExtraction_EXPORT std::size_t
                                            const Matrix<double, 3, 3> &   indexToPhysical,
                                            double                         degenerateQAreaTolerance,
                                            bool                           roundToFloat = false,
-                                           TriangleAABBTree *             tree = nullptr);
+                                           TriangleAABBTree *             tree = nullptr,
+                                           SelfIntersectionCache *        cache = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

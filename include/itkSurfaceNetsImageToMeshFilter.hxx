@@ -22,6 +22,7 @@
 #include "itkMeshExtractionCellBlock.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
@@ -277,6 +278,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   m_NumberOfRoundsPerformed = 0;
   std::vector<std::uint64_t> refused; // edges whose swap had to be undone
   TriangleAABBTree           tree;    // one shape for every check below, refitted
+  SelfIntersectionCache      cache;   // what the checks after small moves may skip
   // Relax, then undo moves that would break the mesh. A node pulled back is held
   // still in later rounds: it is where the mesh is tight (thin or sharp parts).
   auto relaxAndCheck = [&]() {
@@ -291,7 +293,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
       }
     }
     const LargeBlockVector<Vec3> before = m_Net.positions;
-    m_NumberOfNodesMovedBack += PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat, &tree);
+    m_NumberOfNodesMovedBack +=
+      PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat, &tree, &cache);
     for (std::size_t i = 0; i < start.size(); ++i)
     {
       if (m_Net.positions[i] != before[i])

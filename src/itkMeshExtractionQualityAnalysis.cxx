@@ -208,23 +208,39 @@ namespace
 /** The pairs of triangles whose boxes overlap in `tree` (the tree against itself, each
  * pair once, the first levels' node pairs shared among the threads), that `accept`
  * lets through and that intersect (FacesIntersect), sorted. */
-template <typename TAccept>
-std::vector<std::pair<std::uint32_t, std::uint32_t>>
-IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAABBTree & tree, TAccept && accept)
+using FacePair = std::pair<std::uint32_t, std::uint32_t>;
+using FacePairBlocks = std::vector<std::vector<FacePair>>;
+
+/** The pairs of triangles whose boxes overlap in `tree` (the tree against itself, each
+ * pair once, the first levels' node pairs shared among the threads), that `accept`
+ * lets through and that intersect (FacesIntersect), sorted. Also every overlapping
+ * pair that `keep` lets through, unsorted, into `kept` (one list per block). */
+template <typename TAccept, typename TKeep>
+std::vector<FacePair>
+IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh,
+                             const TriangleAABBTree &    tree,
+                             TAccept &&                  accept,
+                             TKeep &&                    keep,
+                             FacePairBlocks &            kept)
 {
-  const std::vector<TriangleAABBTree::NodePair>                     starts = tree.SplitOverlappingPairs(4096);
-  constexpr std::size_t                                             PairsPerBlock = 16;
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((starts.size() + PairsPerBlock - 1) /
-                                                                          PairsPerBlock);
+  const std::vector<TriangleAABBTree::NodePair> starts = tree.SplitOverlappingPairs(4096);
+  constexpr std::size_t                         PairsPerBlock = 16;
+  const std::size_t                             numberOfBlocks = (starts.size() + PairsPerBlock - 1) / PairsPerBlock;
+  FacePairBlocks                                found(numberOfBlocks);
+  kept.resize(numberOfBlocks);
+  for (auto & block : kept)
+  {
+    block.clear(); // keeps its memory for the next search
+  }
   ParallelForBlocks(starts.size(), PairsPerBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
     for (std::size_t i = begin; i < end; ++i)
     {
       tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
-        if (!accept(f, g))
+        if (keep(f, g))
         {
-          return;
+          kept[block].emplace_back(f, g);
         }
-        if (MeshFacesIntersect(mesh, f, g))
+        if (accept(f, g) && MeshFacesIntersect(mesh, f, g))
         {
           found[block].emplace_back(std::min(f, g), std::max(f, g));
         }
@@ -232,6 +248,160 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAAB
     }
   });
   return SortedPairs(found);
+}
+
+template <typename TAccept>
+std::vector<FacePair>
+IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAABBTree & tree, TAccept && accept)
+{
+  FacePairBlocks none;
+  return IntersectingOverlappingPairs(
+    mesh, tree, accept, [](std::uint32_t, std::uint32_t) { return false; }, none);
+}
+
+bool
+ShareAVertex(const TriangleIndices & t, const TriangleIndices & u)
+{
+  for (std::uint32_t v : t)
+  {
+    if (v == u[0] || v == u[1] || v == u[2])
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/** The full search of FindSelfIntersections (every pair that `accept` lets through
+ * and that intersects; `tree` holds boxes that contain the faces' own, `boxes`;
+ * certified[v] as CertifiedFans), with a cache: see SelfIntersectionCache. */
+template <typename TAccept>
+std::vector<FacePair>
+SearchWithCache(const IndexedTriangleMesh &       mesh,
+                const TriangleAABBTree &          tree,
+                const AxisAlignedBoxArray &       boxes,
+                const std::vector<std::uint8_t> & certified,
+                SelfIntersectionCache &           cache,
+                TAccept &&                        accept)
+{
+  const std::size_t n = mesh.triangles.size();
+  const std::size_t numberOfPoints = mesh.points.size();
+  // The faces that moved since the rebuild (NaN points count as moved).
+  std::vector<std::uint8_t> moved;
+  std::size_t               numberOfMoved = n;
+  if (n > 0 && cache.points.size() == numberOfPoints && cache.triangles.size() == n)
+  {
+    const double              limit = 0.45 * cache.margin;
+    std::vector<std::uint8_t> far(numberOfPoints);
+    for (std::size_t v = 0; v < numberOfPoints; ++v)
+    {
+      far[v] = SquaredNorm(mesh.points[v] - cache.points[v]) < limit * limit ? 0 : 1;
+    }
+    moved.resize(n);
+    for (std::size_t f = 0; f < n; ++f)
+    {
+      const auto & t = mesh.triangles[f];
+      moved[f] = (t != cache.triangles[f] || far[t[0]] || far[t[1]] || far[t[2]]) ? 1 : 0;
+    }
+    numberOfMoved = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), std::uint8_t{ 1 }));
+  }
+  if (4 * numberOfMoved > n)
+  {
+    // Rebuild: the whole search, which also yields the near pairs (the tree's boxes
+    // contain the grown ones).
+    ++cache.numberOfRebuilds;
+    cache.points.assign(mesh.points.begin(), mesh.points.end());
+    cache.triangles.assign(mesh.triangles.begin(), mesh.triangles.end());
+    const double grow = cache.margin; // both boxes grown by half of it
+    auto         near = [&](std::uint32_t f, std::uint32_t g) {
+      const AxisAlignedBox & a = boxes[f];
+      const AxisAlignedBox & b = boxes[g];
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        if (a.lower[d] - grow > b.upper[d] || b.lower[d] - grow > a.upper[d])
+        {
+          return false;
+        }
+      }
+      return !ShareAVertex(mesh.triangles[f], mesh.triangles[g]);
+    };
+    return IntersectingOverlappingPairs(mesh, tree, accept, near, cache.nearPairs);
+  }
+  ++cache.numberOfIncrementalSearches;
+  auto intersect = [&](std::uint32_t f, std::uint32_t g) { return accept(f, g) && MeshFacesIntersect(mesh, f, g); };
+  std::vector<FacePair> found;
+  // Near pairs of faces that did not move.
+  for (const auto & block : cache.nearPairs)
+  {
+    for (const auto & p : block)
+    {
+      if (!moved[p.first] && !moved[p.second] && intersect(p.first, p.second))
+      {
+        found.emplace_back(std::min(p.first, p.second), std::max(p.first, p.second));
+      }
+    }
+  }
+  // Faces that did not move and meet at a vertex whose fan is not certified now.
+  std::vector<FacePair> corners; // (vertex, face)
+  for (std::uint32_t f = 0; f < n; ++f)
+  {
+    for (std::uint32_t v : mesh.triangles[f])
+    {
+      if (!moved[f] && v < numberOfPoints && !certified[v])
+      {
+        corners.emplace_back(v, f);
+      }
+    }
+  }
+  std::sort(corners.begin(), corners.end());
+  for (std::size_t i = 0; i < corners.size();)
+  {
+    std::size_t j = i;
+    while (j < corners.size() && corners[j].first == corners[i].first)
+    {
+      ++j;
+    }
+    for (std::size_t a = i; a < j; ++a)
+    {
+      for (std::size_t b = a + 1; b < j; ++b)
+      {
+        const std::uint32_t f = corners[a].second;
+        const std::uint32_t g = corners[b].second;
+        if (f != g && intersect(f, g))
+        {
+          found.emplace_back(std::min(f, g), std::max(f, g));
+        }
+      }
+    }
+    i = j;
+  }
+  // Pairs with a face that moved: one query each (a pair of two such faces once).
+  std::vector<std::uint32_t> queries;
+  for (std::uint32_t f = 0; f < n; ++f)
+  {
+    if (moved[f])
+    {
+      queries.push_back(f);
+    }
+  }
+  constexpr std::size_t BlockSize = 512;
+  FacePairBlocks        blocks((queries.size() + BlockSize - 1) / BlockSize);
+  ParallelForBlocks(queries.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const std::uint32_t f = queries[i];
+      tree.VisitOverlapping(boxes[f], [&](std::uint32_t g) {
+        if (g != f && !(moved[g] && g < f) && intersect(f, g))
+        {
+          blocks[block].emplace_back(std::min(f, g), std::max(f, g));
+        }
+      });
+    }
+  });
+  blocks.push_back(std::move(found));
+  auto pairs = SortedPairs(blocks);
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
 }
 /** Per point: 1 if its fan is certified (CertifyFan), from the faces at it in face
  * order. All 0 if a face refers to a point that is not there. */
@@ -366,7 +536,8 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 FindSelfIntersections(const IndexedTriangleMesh &        mesh,
                       const std::vector<std::uint32_t> & queries,
-                      const TriangleAABBTree &           tree)
+                      const TriangleAABBTree &           tree,
+                      SelfIntersectionCache *            cache)
 {
   const std::size_t          n = mesh.triangles.size();
   auto                       valid = [&mesh](std::uint32_t f) { return MeshFaceIsProper(mesh, f); };
@@ -413,11 +584,13 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
       }
       return false;
     };
-    return IntersectingOverlappingPairs(mesh, tree, [&](std::uint32_t f, std::uint32_t g) {
+    auto accept = [&](std::uint32_t f, std::uint32_t g) {
       // The common-vertex test first: it turns away nearly every pair.
       return f < n && g < n && !meetAtCertifiedVertex(f, g) && (probed[f] || probed[g]) && usable[f] && usable[g] &&
              boxes[f].Overlaps(boxes[g]);
-    });
+    };
+    return cache != nullptr ? SearchWithCache(mesh, tree, boxes, certified, *cache, accept)
+                            : IntersectingOverlappingPairs(mesh, tree, accept);
   }
   constexpr std::size_t                                             BlockSize = 2048;
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((probes.size() + BlockSize - 1) / BlockSize);

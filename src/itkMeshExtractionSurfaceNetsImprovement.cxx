@@ -21,6 +21,7 @@
 #include "itkMeshExtractionTriangleAABBTree.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace itk
@@ -351,7 +352,8 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
                      const Matrix<double, 3, 3> &   M,
                      double                         tolerance,
                      bool                           roundToFloat,
-                     TriangleAABBTree *             sharedTree)
+                     TriangleAABBTree *             sharedTree,
+                     SelfIntersectionCache *        cache)
 {
   const auto &           triangles = mesh.triangles;
   const std::size_t      numberOfTriangles = triangles.size();
@@ -387,6 +389,37 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
     {
       boxes[f].Add(check.points[v]);
       boxes[f].Add(startPhysical[v]);
+    }
+  }
+  if (cache != nullptr)
+  {
+    // The cache needs boxes grown by half its margin: half the mean edge length,
+    // set on the first call.
+    if (!(cache->margin > 0.0))
+    {
+      double      sum = 0.0;
+      std::size_t count = 0;
+      for (const auto & t : triangles)
+      {
+        for (unsigned int k = 0; k < 3; ++k)
+        {
+          const double length = std::sqrt(SquaredNorm(startPhysical[t[k]] - startPhysical[t[(k + 1) % 3]]));
+          if (std::isfinite(length))
+          {
+            sum += length;
+            ++count;
+          }
+        }
+      }
+      cache->margin = count > 0 ? 0.5 * sum / static_cast<double>(count) : 0.0;
+    }
+    for (auto & box : boxes)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        box.lower[d] -= 0.5 * cache->margin;
+        box.upper[d] += 0.5 * cache->margin;
+      }
     }
   }
   TriangleAABBTree   localTree;
@@ -444,7 +477,7 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
         }
       }
     }
-    for (const auto & p : FindSelfIntersections(check, candidates, tree))
+    for (const auto & p : FindSelfIntersections(check, candidates, tree, cache))
     {
       badNodes.insert(badNodes.end(), triangles[p.first].begin(), triangles[p.first].end());
       badNodes.insert(badNodes.end(), triangles[p.second].begin(), triangles[p.second].end());
