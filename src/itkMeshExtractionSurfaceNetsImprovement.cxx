@@ -57,36 +57,62 @@ Previous(std::uint32_t h)
 void
 SurfaceNetTriangles::BuildConnectivity(std::size_t numberOfPoints)
 {
+  // The half-edges grouped by the lower vertex of their edge (counting sort, in
+  // half-edge order), then each group sorted by the upper vertex: the two
+  // half-edges of an edge meet. O(n), where one sort of all 3n edge keys took
+  // 45 ms for 222,528 triangles.
   const std::size_t n = triangles.size();
-  struct Key
-  {
-    std::uint64_t edge;
-    std::uint32_t halfEdge;
+  auto              endsOf = [this](std::uint32_t h) {
+    const std::uint32_t u = triangles[h / 3][h % 3];
+    const std::uint32_t v = triangles[h / 3][(h % 3 + 1) % 3];
+    return std::make_pair(std::min(u, v), std::max(u, v));
   };
-  LargeBlockVector<Key> keys(3 * n);
-  for (std::uint32_t f = 0; f < n; ++f)
+  LargeBlockVector<std::uint32_t> start(numberOfPoints + 1, 0);
+  for (const auto & t : triangles)
   {
-    for (std::uint32_t k = 0; k < 3; ++k)
+    for (std::uint32_t v : t)
     {
-      const std::uint32_t u = triangles[f][k];
-      const std::uint32_t v = triangles[f][(k + 1) % 3];
-      keys[3 * f + k] = { (static_cast<std::uint64_t>(std::min(u, v)) << 32) | std::max(u, v), 3 * f + k };
+      if (v >= numberOfPoints)
+      {
+        itkGenericExceptionMacro("SurfaceNets: internal error: a triangle refers to node " << v << " of "
+                                                                                           << numberOfPoints << '.');
+      }
     }
   }
-  std::sort(keys.begin(), keys.end(), [](const Key & x, const Key & y) {
-    return x.edge != y.edge ? x.edge < y.edge : x.halfEdge < y.halfEdge;
-  });
-  twin.assign(3 * n, None);
-  for (std::size_t i = 0; i < keys.size();)
+  const auto numberOfHalfEdges = static_cast<std::uint32_t>(3 * n);
+  for (std::uint32_t h = 0; h < numberOfHalfEdges; ++h)
   {
-    if (i + 1 >= keys.size() || keys[i + 1].edge != keys[i].edge ||
-        (i + 2 < keys.size() && keys[i + 2].edge == keys[i].edge))
+    ++start[endsOf(h).first + 1];
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  LargeBlockVector<std::uint32_t> grouped(numberOfHalfEdges);
+  {
+    LargeBlockVector<std::uint32_t> cursor(start.begin(), start.end() - 1);
+    for (std::uint32_t h = 0; h < numberOfHalfEdges; ++h)
     {
-      itkGenericExceptionMacro("SurfaceNets: internal error: the triangles do not form a closed 2-manifold.");
+      grouped[cursor[endsOf(h).first]++] = h;
     }
-    twin[keys[i].halfEdge] = keys[i + 1].halfEdge;
-    twin[keys[i + 1].halfEdge] = keys[i].halfEdge;
-    i += 2;
+  }
+  twin.assign(numberOfHalfEdges, None);
+  for (std::size_t a = 0; a < numberOfPoints; ++a)
+  {
+    const auto first = grouped.begin() + start[a];
+    const auto last = grouped.begin() + start[a + 1];
+    std::sort(first, last, [&endsOf](std::uint32_t x, std::uint32_t y) {
+      const std::uint32_t ex = endsOf(x).second;
+      const std::uint32_t ey = endsOf(y).second;
+      return ex != ey ? ex < ey : x < y;
+    });
+    for (auto i = first; i != last; i += 2)
+    {
+      const std::uint32_t upper = endsOf(*i).second;
+      if (i + 1 == last || endsOf(*(i + 1)).second != upper || (i + 2 != last && endsOf(*(i + 2)).second == upper))
+      {
+        itkGenericExceptionMacro("SurfaceNets: internal error: the triangles do not form a closed 2-manifold.");
+      }
+      twin[*i] = *(i + 1);
+      twin[*(i + 1)] = *i;
+    }
   }
   valence.assign(numberOfPoints, 0);
   for (const auto & t : triangles)

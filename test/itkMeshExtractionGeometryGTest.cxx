@@ -19,6 +19,7 @@
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionPredicates.h"
 #include "itkMeshExtractionQualityAnalysis.h"
+#include "itkMeshExtractionSurfaceNetsImprovement.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMeshExtractionTestHelpers.h"
 
@@ -572,6 +573,37 @@ TEST(SelfIntersectionCache, FindsThePairsOfTheFullSearchAfterSmallAndLargeMoves)
   EXPECT_GE(cache.numberOfRebuilds, 1u);
   EXPECT_GE(cache.numberOfIncrementalSearches, 6u);
   EXPECT_GE(incrementalWithPairs, 3u); // the spheres meeting, the thrown vertex, the swap
+}
+
+TEST(SurfaceNetTriangles, BuildConnectivityPairsEveryHalfEdgeWithItsReverse)
+{
+  const IndexedTriangleMesh sphere = MakeIcosphere(2, 1.0);
+  SurfaceNetTriangles       mesh;
+  mesh.triangles = sphere.triangles;
+  mesh.BuildConnectivity(sphere.points.size());
+  ASSERT_EQ(mesh.twin.size(), 3 * mesh.triangles.size());
+  std::vector<std::uint32_t> facesAt(sphere.points.size(), 0);
+  for (std::uint32_t h = 0; h < mesh.twin.size(); ++h)
+  {
+    const std::uint32_t t = mesh.twin[h];
+    ASSERT_LT(t, mesh.twin.size());
+    EXPECT_NE(t / 3, h / 3);
+    EXPECT_EQ(mesh.twin[t], h);
+    // h runs u -> v, its twin v -> u.
+    EXPECT_EQ(mesh.triangles[h / 3][h % 3], mesh.triangles[t / 3][(t % 3 + 1) % 3]);
+    EXPECT_EQ(mesh.triangles[h / 3][(h % 3 + 1) % 3], mesh.triangles[t / 3][t % 3]);
+    ++facesAt[mesh.triangles[h / 3][h % 3]];
+  }
+  EXPECT_EQ(mesh.valence, facesAt);
+
+  SurfaceNetTriangles open = mesh; // a hole: edges with one half-edge
+  open.triangles.pop_back();
+  EXPECT_THROW(open.BuildConnectivity(sphere.points.size()), itk::ExceptionObject);
+  SurfaceNetTriangles fin = mesh; // a third face on an edge
+  fin.triangles.push_back(
+    { mesh.triangles[0][0], mesh.triangles[0][1], static_cast<std::uint32_t>(sphere.points.size()) });
+  EXPECT_THROW(fin.BuildConnectivity(sphere.points.size() + 1), itk::ExceptionObject);
+  EXPECT_THROW(mesh.BuildConnectivity(sphere.points.size() - 1), itk::ExceptionObject); // a node out of range
 }
 
 TEST(ParallelForBlocks, ScopedNumberOfWorkUnitsBoundsTheThreadsAndIsRestored)
