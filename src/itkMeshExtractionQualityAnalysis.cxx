@@ -213,14 +213,13 @@ using FacePairBlocks = std::vector<std::vector<FacePair>>;
 
 /** The pairs of triangles whose boxes overlap in `tree` (the tree against itself, each
  * pair once, the first levels' node pairs shared among the threads), that `accept`
- * lets through and that intersect (FacesIntersect), sorted. Also every overlapping
- * pair that `keep` lets through, unsorted, into `kept` (one list per block). */
-template <typename TAccept, typename TKeep>
+ * lets through and that intersect (FacesIntersect), sorted. accept(f, g, list)
+ * may also keep the pair in `list`, one of `kept` (a list per block). */
+template <typename TAccept>
 std::vector<FacePair>
 IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh,
                              const TriangleAABBTree &    tree,
                              TAccept &&                  accept,
-                             TKeep &&                    keep,
                              FacePairBlocks &            kept)
 {
   const std::vector<TriangleAABBTree::NodePair> starts = tree.SplitOverlappingPairs(4096);
@@ -236,11 +235,7 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh,
     for (std::size_t i = begin; i < end; ++i)
     {
       tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
-        if (keep(f, g))
-        {
-          kept[block].emplace_back(f, g);
-        }
-        if (accept(f, g) && MeshFacesIntersect(mesh, f, g))
+        if (accept(f, g, kept[block]) && MeshFacesIntersect(mesh, f, g))
         {
           found[block].emplace_back(std::min(f, g), std::max(f, g));
         }
@@ -256,33 +251,22 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAAB
 {
   FacePairBlocks none;
   return IntersectingOverlappingPairs(
-    mesh, tree, accept, [](std::uint32_t, std::uint32_t) { return false; }, none);
-}
-
-bool
-ShareAVertex(const TriangleIndices & t, const TriangleIndices & u)
-{
-  for (std::uint32_t v : t)
-  {
-    if (v == u[0] || v == u[1] || v == u[2])
-    {
-      return true;
-    }
-  }
-  return false;
+    mesh, tree, [&accept](std::uint32_t f, std::uint32_t g, std::vector<FacePair> &) { return accept(f, g); }, none);
 }
 
 /** The full search of FindSelfIntersections (every pair that `accept` lets through
  * and that intersects; `tree` holds boxes that contain the faces' own, `boxes`;
- * certified[v] as CertifiedFans), with a cache: see SelfIntersectionCache. */
-template <typename TAccept>
+ * certified[v] as CertifiedFans), with a cache: see SelfIntersectionCache.
+ * acceptApart(f, g) is `accept` for two faces without a common vertex. */
+template <typename TAccept, typename TAcceptApart>
 std::vector<FacePair>
 SearchWithCache(const IndexedTriangleMesh &       mesh,
                 const TriangleAABBTree &          tree,
                 const AxisAlignedBoxArray &       boxes,
                 const std::vector<std::uint8_t> & certified,
                 SelfIntersectionCache &           cache,
-                TAccept &&                        accept)
+                TAccept &&                        accept,
+                TAcceptApart &&                   acceptApart)
 {
   const std::size_t n = mesh.triangles.size();
   const std::size_t numberOfPoints = mesh.points.size();
@@ -323,9 +307,38 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
           return false;
         }
       }
-      return !ShareAVertex(mesh.triangles[f], mesh.triangles[g]);
+      return true;
     };
-    return IntersectingOverlappingPairs(mesh, tree, accept, near, cache.nearPairs);
+    // `accept`, with the common vertices looked up once for both questions.
+    return IntersectingOverlappingPairs(
+      mesh,
+      tree,
+      [&](std::uint32_t f, std::uint32_t g, std::vector<FacePair> & nearPairs) {
+        if (f >= n || g >= n)
+        {
+          return false;
+        }
+        const auto & t = mesh.triangles[f];
+        const auto & u = mesh.triangles[g];
+        bool         common = false;
+        for (std::uint32_t v : t)
+        {
+          if (v == u[0] || v == u[1] || v == u[2])
+          {
+            if (certified[v])
+            {
+              return false;
+            }
+            common = true;
+          }
+        }
+        if (!common && near(f, g))
+        {
+          nearPairs.emplace_back(f, g);
+        }
+        return acceptApart(f, g);
+      },
+      cache.nearPairs);
   }
   ++cache.numberOfIncrementalSearches;
   auto intersect = [&](std::uint32_t f, std::uint32_t g) { return accept(f, g) && MeshFacesIntersect(mesh, f, g); };
@@ -335,7 +348,8 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
   {
     for (const auto & p : block)
     {
-      if (!moved[p.first] && !moved[p.second] && intersect(p.first, p.second))
+      if (!moved[p.first] && !moved[p.second] && acceptApart(p.first, p.second) &&
+          MeshFacesIntersect(mesh, p.first, p.second))
       {
         found.emplace_back(std::min(p.first, p.second), std::max(p.first, p.second));
       }
@@ -584,12 +598,14 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
       }
       return false;
     };
+    auto acceptApart = [&](std::uint32_t f, std::uint32_t g) {
+      return boxes[f].Overlaps(boxes[g]) && (probed[f] || probed[g]) && usable[f] && usable[g];
+    };
     auto accept = [&](std::uint32_t f, std::uint32_t g) {
       // The common-vertex test first: it turns away nearly every pair.
-      return f < n && g < n && !meetAtCertifiedVertex(f, g) && (probed[f] || probed[g]) && usable[f] && usable[g] &&
-             boxes[f].Overlaps(boxes[g]);
+      return f < n && g < n && !meetAtCertifiedVertex(f, g) && acceptApart(f, g);
     };
-    return cache != nullptr ? SearchWithCache(mesh, tree, boxes, certified, *cache, accept)
+    return cache != nullptr ? SearchWithCache(mesh, tree, boxes, certified, *cache, accept, acceptApart)
                             : IntersectingOverlappingPairs(mesh, tree, accept);
   }
   constexpr std::size_t                                             BlockSize = 2048;

@@ -419,8 +419,9 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   }
   if (cache != nullptr)
   {
-    // The cache needs boxes grown by half its margin: half the mean edge length,
-    // set on the first call.
+    // The cache needs boxes grown by half its margin: 0.4 of the mean edge length,
+    // set on the first call (0.3, 0.5 and 0.65 made the checks of a high-quality run
+    // on the 256^3 sphere slower: 340-380 ms against 290-300 ms).
     if (!(cache->margin > 0.0))
     {
       double      sum = 0.0;
@@ -437,7 +438,7 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
           }
         }
       }
-      cache->margin = count > 0 ? 0.5 * sum / static_cast<double>(count) : 0.0;
+      cache->margin = count > 0 ? 0.4 * sum / static_cast<double>(count) : 0.0;
     }
     for (auto & box : boxes)
     {
