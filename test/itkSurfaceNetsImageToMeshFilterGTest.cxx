@@ -17,6 +17,7 @@
  *=========================================================================*/
 #include "itkSurfaceNetsImageToMeshFilter.h"
 #include "itkBinaryMask3DMeshSource.h"
+#include "itkImageRegionIteratorWithIndex.h"
 #include "itkMeshExtractionCellBlock.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionQualityAnalysis.h"
@@ -672,6 +673,51 @@ TEST(SurfaceNetsImageToMeshFilter, SnertSphereHasSlicerQualityAtAFiftiethOfAVoxe
   EXPECT_TRUE(Measure(sna.GetPointer()).IsValidClosedSurface());
 
   // (Greyscale marching cubes is compared in the VTK test suite.)
+}
+
+TEST(SurfaceNetsImageToMeshFilter, SnertClosesAnObjectCutByTheImageBorderHalfAVoxelOutside)
+{
+  // A slab x <= 3.5 (distance map, inside below 0) cut by the image's x = 0 face: the
+  // voxels outside the image count as background mirrored about the iso-value, so
+  // the closing face lies halfway between voxel 0 and the virtual voxel -1, at
+  // x = -0.5. (A cell at x = -1 once read its outside corners from the far side of
+  // the image, x = 15, and put that face at about x = -0.23.)
+  auto image = MakeImage<FloatImage>(16, 12, 12);
+  for (itk::ImageRegionIteratorWithIndex<FloatImage> it(image, image->GetBufferedRegion()); !it.IsAtEnd(); ++it)
+  {
+    // Far from the object (x >= 12) the field slopes along y instead, so that reading
+    // the far side of the image for the border cells shows in their gradients too.
+    const auto & index = it.GetIndex();
+    it.Set(index[0] < 12 ? static_cast<float>(index[0]) - 3.5f : 8.5f + 2.0f * static_cast<float>(index[1]));
+  }
+  for (const bool gaussian : { false, true })
+  {
+    SCOPED_TRACE(gaussian ? "Gaussian-derivative gradients" : "central differences");
+    auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage, QEMeshType>::New();
+    filter->SetInput(image);
+    filter->SetIsoValue(0.0);
+    filter->SetInsideIsAboveIsoValue(false);
+    filter->SetRelaxation(Enums::Relaxation::Combined);
+    if (gaussian)
+    {
+      filter->SetGradientMethod(Enums::Gradient::GaussianDerivative);
+    }
+    filter->Update();
+    auto mesh = filter->GetOutput();
+    ASSERT_TRUE(Measure(mesh).IsValidClosedSurface());
+    std::size_t onTheBorderFace = 0;
+    for (auto it = mesh->GetPoints()->Begin(); it != mesh->GetPoints()->End(); ++it)
+    {
+      const auto & point = it.Value();
+      // Nodes of the border face away from its rim (y and z inside the image).
+      if (point[0] < 0.0 && point[1] > 1.0 && point[1] < 10.0 && point[2] > 1.0 && point[2] < 10.0)
+      {
+        EXPECT_NEAR(point[0], -0.5, 0.02) << "node at " << point;
+        ++onTheBorderFace;
+      }
+    }
+    EXPECT_GE(onTheBorderFace, 64u);
+  }
 }
 
 TEST(SurfaceNetsImageToMeshFilter, SnertPlaneIsExactAndAsFlatAsMarchingCubes)
