@@ -333,19 +333,40 @@ ConstrainToBox(const Vec3 & p, const Vec3 & d, const Vec3 & lower, const Vec3 & 
   return d * std::max(t, 0.0);
 }
 
+/** What RelaxSurfaceNet reads of each node in an iteration: its cell's trilinear
+ * value and (central differences) gradient fields as coefficients, its box and
+ * its cell's corner. Passed to several RelaxSurfaceNet calls on one net (the same
+ * nodes, cells, image and gradient method, as in the high-quality mode's rounds),
+ * it is made once and only the boxes are refreshed. \ingroup MeshExtraction */
+struct SurfaceNetsCellCache
+{
+  struct Entry
+  {
+    float  value[8];
+    float  gradient[3][8];
+    Vec3   lower;
+    Vec3   upper;
+    double corner[3];
+  };
+  UninitializedArray<Entry> entries;
+  bool                      centralDifferences{ false };
+};
+
 /** Stage 3 of SurfaceNets: relax the nodes with batch (Jacobi) updates until the
  * largest relocation falls below the threshold or the iteration limit is reached.
  * Vectors are built in physical space (the projection on the plane
  * perpendicular to the gradient needs true angles), constrained in index space
  * (where a cell is a unit cube). `gradient(p, node)` returns dI/d(index).
- * Deterministic for any number of threads. \ingroup MeshExtraction */
+ * Deterministic for any number of threads. `cellCache`: see SurfaceNetsCellCache.
+ * \ingroup MeshExtraction */
 template <typename TSampler, typename TGradient>
 SurfaceNetsRelaxationResult
 RelaxSurfaceNet(SurfaceNet &                            net,
                 const TSampler *                        sampler,
                 TGradient &&                            gradient,
                 const SurfaceNetsRelaxationParameters & parameters,
-                const std::function<void(double)> &     progress = nullptr)
+                const std::function<void(double)> &     progress = nullptr,
+                SurfaceNetsCellCache *                  cellCache = nullptr)
 {
   SurfaceNetsRelaxationResult result;
   if (parameters.kind == SurfaceNetsRelaxationKind::None || parameters.maximumNumberOfIterations == 0)
@@ -421,14 +442,6 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   // three partial derivatives then cost 16 multiply-adds.
   // With the node's box and its cell's corner, so that an iteration reads one
   // record per node (besides the positions) instead of several arrays.
-  struct CellCache
-  {
-    float  value[8];
-    float  gradient[3][8];
-    Vec3   lower;
-    Vec3   upper;
-    double corner[3];
-  };
   auto toCoefficients = [](const double f[8], float c[8]) {
     c[0] = static_cast<float>(f[0]);
     c[1] = static_cast<float>(f[1] - f[0]);
@@ -439,10 +452,26 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     c[6] = static_cast<float>(f[6] - f[4] - f[2] + f[0]);
     c[7] = static_cast<float>(f[7] - f[6] - f[5] + f[4] - f[3] + f[2] + f[1] - f[0]);
   };
-  UninitializedArray<CellCache> cache; // 200 bytes a node, all written below
-  if (sampler != nullptr && useGradient)
+  // 200 bytes a node, all written below; kept in `cellCache` from an earlier call
+  // on the same net, where only the boxes are refreshed.
+  UninitializedArray<SurfaceNetsCellCache::Entry>   localCache;
+  UninitializedArray<SurfaceNetsCellCache::Entry> & cache = cellCache != nullptr ? cellCache->entries : localCache;
+  if (sampler != nullptr && useGradient && cellCache != nullptr && cache.size() == numberOfNodes &&
+      cellCache->centralDifferences == parameters.centralDifferences)
+  {
+    for (std::size_t i = 0; i < numberOfNodes; ++i)
+    {
+      cache[i].lower = net.boxLower[i];
+      cache[i].upper = net.boxUpper[i];
+    }
+  }
+  else if (sampler != nullptr && useGradient)
   {
     cache.Allocate(numberOfNodes);
+    if (cellCache != nullptr)
+    {
+      cellCache->centralDifferences = parameters.centralDifferences;
+    }
     ParallelForBlocks(
       numberOfNodes,
       BlockSize,
@@ -558,10 +587,10 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     {
       return false;
     }
-    const CellCache & cc = cache[node];
-    const double      u = p[0] - cc.corner[0];
-    const double      v = p[1] - cc.corner[1];
-    const double      w = p[2] - cc.corner[2];
+    const SurfaceNetsCellCache::Entry & cc = cache[node];
+    const double                        u = p[0] - cc.corner[0];
+    const double                        v = p[1] - cc.corner[1];
+    const double                        w = p[2] - cc.corner[2];
     if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0))
     {
       return false;

@@ -28,6 +28,11 @@
 
 namespace itk
 {
+namespace MeshExtraction
+{
+struct SurfaceNetsCellCache;
+} // namespace MeshExtraction
+
 /** \class SurfaceNetsImageToMeshFilter
  * \brief Extracts a closed, 2-manifold, outward-oriented triangle (or quad) mesh
  * from a 3-D image with the SurfaceNets of Gibson, extended with greyscale
@@ -216,12 +221,16 @@ protected:
   /** Stage 1: surface cells of the input (or the label image). */
   void
   ClassifyCells();
-  /** Stage 3: relax the net along its links (at most `iterations` times). */
+  /** Stage 3: relax the net along its links (at most `iterations` times). With
+   * `cellCache`, the nodes' cells are read once for every call on this net. */
   MeshExtraction::SurfaceNetsRelaxationResultSummary
-  RelaxNet(RelaxationEnum relaxation, unsigned int iterations);
+  RelaxNet(RelaxationEnum                         relaxation,
+           unsigned int                           iterations,
+           MeshExtraction::SurfaceNetsCellCache * cellCache = nullptr);
   /** Stage 5 (high-quality mode): swaps and relaxation on the triangles. */
   void
-  ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles);
+  ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles,
+                   MeshExtraction::SurfaceNetsCellCache *         cellCache);
   /** Stage 4: the faces (node indices) with the nodes in physical space, into the
    * output mesh. `points`: the nodes' physical points if already made (the face
    * split made them), else null. */

@@ -174,8 +174,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 MeshExtraction::SurfaceNetsRelaxationResultSummary
-SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(RelaxationEnum relaxation,
-                                                                              unsigned int   iterations)
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
+  RelaxationEnum                         relaxation,
+  unsigned int                           iterations,
+  MeshExtraction::SurfaceNetsCellCache * cellCache)
 {
   using namespace MeshExtraction;
   const InputImageType *          input = this->GetInput();
@@ -223,7 +225,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(Re
   if (p.kind == SurfaceNetsRelaxationKind::Averaging || p.kind == SurfaceNetsRelaxationKind::None)
   {
     result = RelaxSurfaceNet(
-      m_Net, &sampler, [](const Vec3 &, std::uint32_t) { return MakeVec3(0, 0, 0); }, p, progress);
+      m_Net, &sampler, [](const Vec3 &, std::uint32_t) { return MakeVec3(0, 0, 0); }, p, progress, cellCache);
   }
   else if (m_GradientMethod == GradientEnum::GaussianDerivative)
   {
@@ -233,12 +235,18 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(Re
       &sampler,
       [this, &gaussian](const Vec3 & q, std::uint32_t node) { return gaussian.Gradient(q, m_Net.nodeCell[node]); },
       p,
-      progress);
+      progress,
+      cellCache);
   }
   else
   {
     result = RelaxSurfaceNet(
-      m_Net, &sampler, [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); }, p, progress);
+      m_Net,
+      &sampler,
+      [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); },
+      p,
+      progress,
+      cellCache);
   }
   return { result.iterations, result.lastMaximumRelocation };
 }
@@ -246,7 +254,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(Re
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTriangles(
-  std::vector<MeshExtraction::TriangleIndices> & triangles)
+  std::vector<MeshExtraction::TriangleIndices> & triangles,
+  MeshExtraction::SurfaceNetsCellCache *         cellCache)
 {
   using namespace MeshExtraction;
   Matrix<double, 3, 3> M;
@@ -284,7 +293,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   auto relaxAndCheck = [&]() {
     mesh.FillLinks(m_Net);
     const LargeBlockVector<Vec3> start = m_Net.positions;
-    this->RelaxNet(relaxation, m_ImprovementIterations);
+    this->RelaxNet(relaxation, m_ImprovementIterations, cellCache);
     for (std::size_t i = 0; i < start.size(); ++i)
     {
       if (SquaredNorm(m_Net.positions[i] - start[i]) < 1e-10)
@@ -551,7 +560,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   {
     initial = m_Net.positions;
   }
-  const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations); // 3
+  // The nodes' cells, read once for the relaxation here and those of the
+  // high-quality mode.
+  MeshExtraction::SurfaceNetsCellCache cellCache;
+  const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations, &cellCache); // 3
   m_NumberOfIterations = relaxed.iterations;
   m_LastMaximumRelocation = relaxed.lastMaximumRelocation;
   Matrix<double, 3, 3> M;
@@ -592,7 +604,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
     {
       triangles[f] = { polygons[f][0], polygons[f][1], polygons[f][2] };
     }
-    this->ImproveTriangles(triangles); // 5
+    this->ImproveTriangles(triangles, &cellCache); // 5
     for (std::size_t f = 0; f < polygons.size(); ++f)
     {
       polygons[f] = { triangles[f][0], triangles[f][1], triangles[f][2], 0 };
