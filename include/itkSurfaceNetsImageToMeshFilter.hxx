@@ -560,10 +560,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   {
     initial = m_Net.positions;
   }
-  // The nodes' cells, read once for the relaxation here and those of the
-  // high-quality mode.
+  // In the high-quality mode, the nodes' cells are read once for the relaxation
+  // here and those that follow (otherwise the memory goes with this relaxation).
   MeshExtraction::SurfaceNetsCellCache cellCache;
-  const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations, &cellCache); // 3
+  const auto                           relaxed =
+    this->RelaxNet(relaxation, m_MaximumNumberOfIterations, m_HighQuality ? &cellCache : nullptr); // 3
   m_NumberOfIterations = relaxed.iterations;
   m_LastMaximumRelocation = relaxed.lastMaximumRelocation;
   Matrix<double, 3, 3> M;
