@@ -201,10 +201,12 @@ class TriangleAABBTree;
  * cannot meet now: only near pairs, faces that meet at a vertex whose fan is not
  * certified now (CertifyFan), and pairs with a moved face (one tree query per moved
  * face) are tested. The pairs found are exactly those of the full search. When more
- * than a quarter of the faces moved, the search is a rebuild again. */
+ * than a quarter of the faces moved, or the margin changed, the search is a rebuild
+ * again. */
 struct SelfIntersectionCache
 {
   double margin{ 0.0 };
+  double marginOfNearPairs{ 0.0 }; ///< the margin of the last rebuild
 
   LargeBlockVector<Vec3>                                            points;
   LargeBlockVector<TriangleIndices>                                 triangles;

@@ -273,7 +273,8 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
   // The faces that moved since the rebuild (NaN points count as moved).
   std::vector<std::uint8_t> moved;
   std::size_t               numberOfMoved = n;
-  if (n > 0 && cache.points.size() == numberOfPoints && cache.triangles.size() == n)
+  if (n > 0 && cache.points.size() == numberOfPoints && cache.triangles.size() == n &&
+      cache.margin == cache.marginOfNearPairs)
   {
     const double              limit = 0.45 * cache.margin;
     std::vector<std::uint8_t> far(numberOfPoints);
@@ -294,6 +295,7 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
     // Rebuild: the whole search, which also yields the near pairs (the tree's boxes
     // contain the grown ones).
     ++cache.numberOfRebuilds;
+    cache.marginOfNearPairs = cache.margin;
     cache.points.assign(mesh.points.begin(), mesh.points.end());
     cache.triangles.assign(mesh.triangles.begin(), mesh.triangles.end());
     const double grow = cache.margin; // both boxes grown by half of it
