@@ -1110,6 +1110,54 @@ ExtractHighQuality(const FloatImage * image, itk::SizeValueType * swaps = nullpt
 }
 } // namespace
 
+TEST(SurfaceNetsImageToMeshFilter, FloatOutputMeshIsValidAsWrittenAndMatchesTheDoubleMesh)
+{
+  // With float coordinates the filter checks the points as they will be written
+  // (rounded to float), so the float mesh is itself closed, manifold, outward and free
+  // of self-intersections, and its points are the double mesh's, rounded.
+  using FloatMesh = itk::Mesh<float, 3>;
+  using DoubleMesh = itk::Mesh<double, 3>;
+  for (const auto shape : { ME::PhantomShape::Sphere, ME::PhantomShape::TwoSpheres })
+  {
+    const Phantom p = MakePhantom(shape);
+    for (const bool high : { false, true })
+    {
+      SCOPED_TRACE(std::string(ME::PhantomShapeName(shape)) + (high ? ", high quality" : ", SNERT"));
+      auto single = itk::SurfaceNetsImageToMeshFilter<FloatImage, FloatMesh>::New();
+      auto twice = itk::SurfaceNetsImageToMeshFilter<FloatImage, DoubleMesh>::New();
+      single->SetInput(p.image);
+      twice->SetInput(p.image);
+      single->SetInsideIsAboveIsoValue(false);
+      twice->SetInsideIsAboveIsoValue(false);
+      single->SetHighQuality(high);
+      twice->SetHighQuality(high);
+      single->Update();
+      twice->Update();
+      const FloatMesh *  f = single->GetOutput();
+      const DoubleMesh * d = twice->GetOutput();
+      const auto         q = Measure(f);
+      EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
+      EXPECT_EQ(q.selfIntersectingPairs, 0); // checked, and none
+      ASSERT_EQ(f->GetNumberOfPoints(), d->GetNumberOfPoints());
+      ASSERT_EQ(f->GetNumberOfCells(), d->GetNumberOfCells());
+      std::size_t same = 0;
+      for (itk::IdentifierType i = 0; i < f->GetNumberOfPoints(); ++i)
+      {
+        const auto a = f->GetPoint(i);
+        const auto b = d->GetPoint(i);
+        double     largest = 0.0;
+        for (unsigned int k = 0; k < 3; ++k)
+        {
+          largest = std::max(largest, std::abs(static_cast<double>(a[k]) - b[k]));
+        }
+        same += largest <= 1e-5 ? 1 : 0; // float rounding at 40 mm: 4e-6 mm
+      }
+      // A node the checks pulled back in one mesh and not the other may differ.
+      EXPECT_GE(static_cast<double>(same), 0.999 * static_cast<double>(f->GetNumberOfPoints()));
+    }
+  }
+}
+
 TEST(SurfaceNetsImageToMeshFilter, HighQualitySphereIsNearlyEquilateralAndStillAccurate)
 {
   const Phantom      p = MakePhantom(ME::PhantomShape::Sphere); // radius 19.2 voxels
