@@ -205,9 +205,6 @@ MeshFaceIsProper(const IndexedTriangleMesh & mesh, std::uint32_t f)
 
 namespace
 {
-/** The pairs of triangles whose boxes overlap in `tree` (the tree against itself, each
- * pair once, the first levels' node pairs shared among the threads), that `accept`
- * lets through and that intersect (FacesIntersect), sorted. */
 using FacePair = std::pair<std::uint32_t, std::uint32_t>;
 using FacePairBlocks = std::vector<std::vector<FacePair>>;
 
@@ -252,6 +249,45 @@ IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAAB
   FacePairBlocks none;
   return IntersectingOverlappingPairs(
     mesh, tree, [&accept](std::uint32_t f, std::uint32_t g, std::vector<FacePair> &) { return accept(f, g); }, none);
+}
+
+/** The pairs of each face f of `queries` with the faces g of `tree` whose boxes
+ * overlap box(f), that `accept` lets through and that intersect (FacesIntersect),
+ * sorted; a pair of two queries (isQuery(g)) once, from the later one's query. */
+template <typename TBox, typename TIsQuery, typename TAccept>
+std::vector<FacePair>
+IntersectingQueryPairs(const IndexedTriangleMesh &        mesh,
+                       const TriangleAABBTree &           tree,
+                       const std::vector<std::uint32_t> & queries,
+                       std::size_t                        blockSize,
+                       TBox &&                            box,
+                       TIsQuery &&                        isQuery,
+                       TAccept &&                         accept)
+{
+  FacePairBlocks found((queries.size() + blockSize - 1) / blockSize);
+  ParallelForBlocks(queries.size(), blockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const std::uint32_t  f = queries[i];
+      const auto &         t = mesh.triangles[f];
+      const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
+      const IdentifierType pid[3] = { t[0], t[1], t[2] };
+      tree.VisitOverlapping(box(f), [&](std::uint32_t g) {
+        if (g == f || (g < f && isQuery(g)) || !accept(f, g))
+        {
+          return;
+        }
+        const auto &         u = mesh.triangles[g];
+        const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
+        const IdentifierType qid[3] = { u[0], u[1], u[2] };
+        if (FacesIntersect(P, pid, Q, qid))
+        {
+          found[block].emplace_back(std::min(f, g), std::max(f, g));
+        }
+      });
+    }
+  });
+  return SortedPairs(found);
 }
 
 /** The full search of FindSelfIntersections (every pair that `accept` lets through
@@ -400,21 +436,16 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
       queries.push_back(f);
     }
   }
-  constexpr std::size_t BlockSize = 512;
-  FacePairBlocks        blocks((queries.size() + BlockSize - 1) / BlockSize);
-  ParallelForBlocks(queries.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      const std::uint32_t f = queries[i];
-      tree.VisitOverlapping(boxes[f], [&](std::uint32_t g) {
-        if (g != f && !(moved[g] && g < f) && intersect(f, g))
-        {
-          blocks[block].emplace_back(std::min(f, g), std::max(f, g));
-        }
-      });
-    }
-  });
-  blocks.push_back(std::move(found));
+  FacePairBlocks blocks(2);
+  blocks[0] = IntersectingQueryPairs(
+    mesh,
+    tree,
+    queries,
+    512,
+    [&boxes](std::uint32_t f) { return boxes[f]; },
+    [&moved](std::uint32_t g) { return moved[g] != 0; },
+    accept);
+  blocks[1] = std::move(found);
   auto pairs = SortedPairs(blocks);
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
@@ -520,33 +551,14 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   {
     probed[f] = true;
   }
-  constexpr std::size_t                                             BlockSize = 2048;
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((probes.size() + BlockSize - 1) / BlockSize);
-  ParallelForBlocks(probes.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      const std::uint32_t  f = probes[i];
-      const auto &         t = mesh.triangles[f];
-      const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
-      const IdentifierType pid[3] = { t[0], t[1], t[2] };
-      tree.VisitOverlapping(TriangleBox(mesh, f), [&](std::uint32_t g) {
-        // Each pair once: by index among all, or (with queries) skip pairs of two
-        // probes where g < f, which the probe g reports.
-        if (g == f || (g < f && (queries == nullptr || probed[g])))
-        {
-          return;
-        }
-        const auto &         s = mesh.triangles[g];
-        const Vec3           Q[3] = { mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]] };
-        const IdentifierType qid[3] = { s[0], s[1], s[2] };
-        if (FacesIntersect(P, pid, Q, qid))
-        {
-          found[block].emplace_back(std::min(f, g), std::max(f, g));
-        }
-      });
-    }
-  });
-  return SortedPairs(found);
+  return IntersectingQueryPairs(
+    mesh,
+    tree,
+    probes,
+    2048,
+    [&mesh](std::uint32_t f) { return TriangleBox(mesh, f); },
+    [&](std::uint32_t g) { return queries == nullptr || probed[g]; },
+    [](std::uint32_t, std::uint32_t) { return true; });
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
@@ -610,35 +622,14 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
     return cache != nullptr ? SearchWithCache(mesh, tree, boxes, certified, *cache, accept, acceptApart)
                             : IntersectingOverlappingPairs(mesh, tree, accept);
   }
-  constexpr std::size_t                                             BlockSize = 2048;
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((probes.size() + BlockSize - 1) / BlockSize);
-  ParallelForBlocks(probes.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      const std::uint32_t  f = probes[i];
-      const auto &         t = mesh.triangles[f];
-      const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
-      const IdentifierType pid[3] = { t[0], t[1], t[2] };
-      tree.VisitOverlapping(TriangleBox(mesh, f), [&](std::uint32_t g) {
-        if (g == f || (g < f && probed[g]))
-        {
-          return;
-        }
-        const auto &         s = mesh.triangles[g];
-        const Vec3           Q[3] = { mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]] };
-        const IdentifierType qid[3] = { s[0], s[1], s[2] };
-        if (!(TriangleBox(mesh, g).Overlaps(TriangleBox(mesh, f))) || !valid(g))
-        {
-          return;
-        }
-        if (FacesIntersect(P, pid, Q, qid))
-        {
-          found[block].emplace_back(std::min(f, g), std::max(f, g));
-        }
-      });
-    }
-  });
-  return SortedPairs(found);
+  return IntersectingQueryPairs(
+    mesh,
+    tree,
+    probes,
+    2048,
+    [&mesh](std::uint32_t f) { return TriangleBox(mesh, f); },
+    [&probed](std::uint32_t g) { return probed[g]; },
+    [&](std::uint32_t f, std::uint32_t g) { return TriangleBox(mesh, g).Overlaps(TriangleBox(mesh, f)) && valid(g); });
 }
 
 TriangleMeshQualityReport
