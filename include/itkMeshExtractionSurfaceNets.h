@@ -91,6 +91,17 @@ struct SurfaceCell
   std::uint32_t firstNode{ 0 };
 };
 
+/** The voxel index of corner k of `cell` (bit 0 of k: +x, bit 1: +y, bit 2: +z), in
+ * 64-bit signed arithmetic: a cell at -1 has its first corners at -1, outside the
+ * image (with the 32-bit coordinate and an unsigned bit, -1 came out as 2^32 - 1). */
+inline std::array<std::int64_t, 3>
+CornerVoxel(const SurfaceCell & cell, unsigned int k)
+{
+  return { std::int64_t{ cell.x } + (k & 1u),
+           std::int64_t{ cell.y } + ((k >> 1) & 1u),
+           std::int64_t{ cell.z } + ((k >> 2) & 1u) };
+}
+
 /** \brief The SurfaceNet: nodes in continuous index space, each constrained to a
  * box inside its cell, and the quadrilaterals that join them (one per voxel edge
  * that crosses the surface, counter-clockwise seen from outside).

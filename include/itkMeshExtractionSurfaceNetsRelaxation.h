@@ -186,8 +186,8 @@ public:
     {
       for (unsigned int k = 0; k < 8; ++k)
       {
-        m_Keys.push_back(Key(
-          std::int64_t{ c.x } + (k & 1), std::int64_t{ c.y } + ((k >> 1) & 1), std::int64_t{ c.z } + ((k >> 2) & 1)));
+        const auto v = CornerVoxel(c, k);
+        m_Keys.push_back(Key(v[0], v[1], v[2]));
       }
     }
     std::sort(m_Keys.begin(), m_Keys.end());
@@ -240,8 +240,8 @@ public:
     Vec3                corner[8];
     for (unsigned int k = 0; k < 8; ++k)
     {
-      const std::int64_t key =
-        Key(std::int64_t{ c.x } + (k & 1), std::int64_t{ c.y } + ((k >> 1) & 1), std::int64_t{ c.z } + ((k >> 2) & 1));
+      const auto [x, y, z] = CornerVoxel(c, k);
+      const std::int64_t key = Key(x, y, z);
       corner[k] = m_Gradients[std::lower_bound(m_Keys.begin(), m_Keys.end(), key) - m_Keys.begin()];
     }
     const Vec3 c00 = corner[0] + (corner[1] - corner[0]) * u;
@@ -543,10 +543,7 @@ RelaxSurfaceNet(SurfaceNet &                            net,
           {
             for (unsigned int k = 0; k < 8; ++k)
             {
-              // Signed: a cell at -1 (outside the image's first voxel) is not at 2^32 - 1.
-              const std::int64_t x = std::int64_t{ c.x } + (k & 1);
-              const std::int64_t y = std::int64_t{ c.y } + ((k >> 1) & 1);
-              const std::int64_t z = std::int64_t{ c.z } + ((k >> 2) & 1);
+              const auto [x, y, z] = CornerVoxel(c, k);
               corner[k] = sampler->Value(x, y, z);
               if (parameters.centralDifferences)
               {
