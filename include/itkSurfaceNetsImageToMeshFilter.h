@@ -162,7 +162,8 @@ public:
   itkGetConstMacro(HighQuality, bool);
   itkBooleanMacro(HighQuality);
   /** Rounds of swaps and relaxation in high-quality mode (default 8); a round without
-   * a swap ends them early. */
+   * a swap ends them early. Then a Delaunay swap pass and a last relaxation, which
+   * also gets the iterations of the round that ended them early. */
   itkSetMacro(NumberOfImprovementRounds, unsigned int);
   itkGetConstMacro(NumberOfImprovementRounds, unsigned int);
   /** SNERT iterations per round in high-quality mode (default 4). */
@@ -195,7 +196,8 @@ public:
   itkGetConstMacro(NumberOfNodes, SizeValueType);
   itkGetConstMacro(NumberOfSplitCells, SizeValueType);
   itkGetConstMacro(NumberOfNodesMovedBack, SizeValueType);
-  /** After Update() in high-quality mode: swaps kept, and improvement rounds run. */
+  /** After Update() in high-quality mode: swaps kept, and improvement rounds run
+   * (those that swapped and relaxed; the last relaxation not counted). */
   itkGetConstMacro(NumberOfSwaps, SizeValueType);
   itkGetConstMacro(NumberOfRoundsPerformed, unsigned int);
 

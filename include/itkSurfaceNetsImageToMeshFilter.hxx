@@ -290,10 +290,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   SelfIntersectionCache      cache;   // what the checks after small moves may skip
   // Relax, then undo moves that would break the mesh. A node pulled back is held
   // still in later rounds: it is where the mesh is tight (thin or sharp parts).
-  auto relaxAndCheck = [&]() {
+  auto relaxAndCheck = [&](unsigned int iterations) {
     mesh.FillLinks(m_Net);
     const LargeBlockVector<Vec3> start = m_Net.positions;
-    this->RelaxNet(relaxation, m_ImprovementIterations, cellCache);
+    this->RelaxNet(relaxation, iterations, cellCache);
     for (std::size_t i = 0; i < start.size(); ++i)
     {
       if (SquaredNorm(m_Net.positions[i] - start[i]) < 1e-10)
@@ -313,36 +313,43 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
       }
     }
   };
+  unsigned int finalIterations = m_ImprovementIterations;
   for (unsigned int round = 0; round < m_NumberOfImprovementRounds; ++round)
   {
     const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
     auto                    swaps = SwapEdges(physical, mesh, swap, &refused);
     UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
     m_NumberOfSwaps += swaps.size();
-    relaxAndCheck();
-    ++m_NumberOfRoundsPerformed;
-    this->UpdateProgress(0.35f + 0.45f * static_cast<float>(round + 1) / m_NumberOfImprovementRounds);
-    if (swaps.empty())
+    if (swaps.empty() && round > 0)
     {
+      // Nothing changed since the last relaxation: this round's iterations go to
+      // the last one, which saves a check (and gives the same mesh where the
+      // check moves nothing back).
+      finalIterations += m_ImprovementIterations;
       break;
     }
+    relaxAndCheck(m_ImprovementIterations);
+    ++m_NumberOfRoundsPerformed;
+    this->UpdateProgress(0.35f + 0.45f * static_cast<float>(round + 1) / m_NumberOfImprovementRounds);
   }
   // A last Delaunay pass: slivers that the constraint pinned get the diagonal that
   // maximises their smallest angle.
   EdgeSwapParameters delaunay = swap;
   delaunay.criterion = MeshExtractionEnums::EdgeSwapCriterion::Delaunay;
+  std::size_t delaunaySwaps = 0;
   for (unsigned int sweep = 0; sweep < 2; ++sweep)
   {
     const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
     auto                    swaps = SwapEdges(physical, mesh, delaunay, &refused);
     UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
-    m_NumberOfSwaps += swaps.size();
+    delaunaySwaps += swaps.size();
     if (swaps.empty())
     {
       break;
     }
   }
-  relaxAndCheck();
+  m_NumberOfSwaps += delaunaySwaps;
+  relaxAndCheck(finalIterations);
   triangles = mesh.triangles;
 }
 
