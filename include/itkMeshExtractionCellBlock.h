@@ -47,7 +47,7 @@ public:
 
   /** Makes `count` default-constructed cells in one block and writes their
    * addresses to `cells[0 .. count)`; the block is released with its last cell.
-   * Throws std::bad_alloc (and then makes none). */
+   * Throws std::bad_alloc, and then makes none (the addresses it wrote are set to null). */
   template <typename TOutputIterator>
   static void
   MakeCells(std::size_t count, TOutputIterator cells)
@@ -56,10 +56,30 @@ public:
     {
       return;
     }
-    Block * block = NewBlock(count);
-    for (std::size_t i = 0; i < count; ++i)
+    Block *     block = NewBlock(count);
+    std::size_t made = 0;
+    try
     {
-      cells[i] = ::new (SlotOf(block, i) + Prefix) BlockAllocatedCell;
+      for (; made < count; ++made)
+      {
+        char * slot = SlotOf(block, made);
+        *reinterpret_cast<Block **>(slot) = block;
+        cells[made] = ::new (slot + Prefix) BlockAllocatedCell; // may throw (ITK 5.2's cells allocate)
+      }
+    }
+    catch (...)
+    {
+      // None made after all: the cells made so far go with the block.
+      for (std::size_t i = 0; i < made; ++i)
+      {
+        std::launder(reinterpret_cast<BlockAllocatedCell *>(SlotOf(block, i) + Prefix))->~BlockAllocatedCell();
+        cells[i] = nullptr;
+      }
+      const std::size_t bytes = block->bytes;
+      block->~Block();
+      ReleaseLargeBlock(block, bytes);
+      --LiveBlocks();
+      throw;
     }
   }
 
@@ -71,7 +91,10 @@ public:
     {
       throw std::bad_alloc();
     }
-    return SlotOf(NewBlock(1), 0) + Prefix;
+    Block * block = NewBlock(1);
+    char *  slot = SlotOf(block, 0);
+    *reinterpret_cast<Block **>(slot) = block;
+    return slot + Prefix;
   }
 
   static void
@@ -132,10 +155,6 @@ private:
     Block *           block = ::new (memory) Block;
     block->live.store(count, std::memory_order_relaxed);
     block->bytes = bytes;
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      *reinterpret_cast<Block **>(SlotOf(block, i)) = block;
-    }
     ++LiveBlocks();
     return block;
   }
