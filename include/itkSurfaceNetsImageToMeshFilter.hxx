@@ -331,24 +331,26 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
     relaxAndCheck(m_ImprovementIterations);
     ++m_NumberOfRoundsPerformed;
     this->UpdateProgress(0.35f + 0.45f * static_cast<float>(round + 1) / m_NumberOfImprovementRounds);
+    if (swaps.empty())
+    {
+      break; // the first round found nothing to swap: it relaxed once, as before
+    }
   }
   // A last Delaunay pass: slivers that the constraint pinned get the diagonal that
   // maximises their smallest angle.
   EdgeSwapParameters delaunay = swap;
   delaunay.criterion = MeshExtractionEnums::EdgeSwapCriterion::Delaunay;
-  std::size_t delaunaySwaps = 0;
   for (unsigned int sweep = 0; sweep < 2; ++sweep)
   {
     const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
     auto                    swaps = SwapEdges(physical, mesh, delaunay, &refused);
     UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
-    delaunaySwaps += swaps.size();
+    m_NumberOfSwaps += swaps.size();
     if (swaps.empty())
     {
       break;
     }
   }
-  m_NumberOfSwaps += delaunaySwaps;
   relaxAndCheck(finalIterations);
   triangles = mesh.triangles;
 }
