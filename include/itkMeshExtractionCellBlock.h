@@ -62,9 +62,7 @@ public:
     {
       for (; made < count; ++made)
       {
-        char * slot = SlotOf(block, made);
-        *reinterpret_cast<Block **>(slot) = block;
-        cells[made] = ::new (slot + Prefix) BlockAllocatedCell; // may throw (ITK 5.2's cells allocate)
+        cells[made] = ::new (CellStorage(block, made)) BlockAllocatedCell; // may throw (ITK 5.2's cells allocate)
       }
     }
     catch (...)
@@ -91,10 +89,7 @@ public:
     {
       throw std::bad_alloc();
     }
-    Block * block = NewBlock(1);
-    char *  slot = SlotOf(block, 0);
-    *reinterpret_cast<Block **>(slot) = block;
-    return slot + Prefix;
+    return CellStorage(NewBlock(1), 0);
   }
 
   static void
@@ -163,6 +158,16 @@ private:
   SlotOf(Block * block, std::size_t i)
   {
     return reinterpret_cast<char *>(block) + Header + i * Slot;
+  }
+
+  /** Slot i's storage for a cell, after writing the block's address just before it
+   * (where operator delete finds it). */
+  static void *
+  CellStorage(Block * block, std::size_t i)
+  {
+    char * slot = SlotOf(block, i);
+    *reinterpret_cast<Block **>(slot) = block;
+    return slot + Prefix;
   }
 };
 
