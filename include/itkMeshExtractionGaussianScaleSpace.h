@@ -19,7 +19,6 @@
 #define itkMeshExtractionGaussianScaleSpace_h
 
 #include "itkContinuousIndex.h"
-#include "itkGaussianDerivativeOperator.h"
 #include "itkImage.h"
 #include "itkImageRegionConstIteratorWithIndex.h"
 #include "itkMeshExtractionParallel.h"
@@ -153,6 +152,18 @@ SearchEdgeAlongLine(const std::vector<double> & scales, double capture, TSample 
   return centre;
 }
 
+/** Maximum error of the discrete Gaussian of GaussianKernel (its missing mass), which
+ * sets the kernel width: about 3.3 sigma each side. */
+constexpr double GaussianKernelMaximumError = 1e-3;
+
+/** The one-dimensional kernel of ITK's GaussianDerivativeOperator (Lindeberg's
+ * discrete Gaussian, the operator of ITK's DiscreteGaussianDerivativeImageFunction) for
+ * physical scale sigma along an axis of the given spacing: order 0 (sums to 1) or 1
+ * (per millimetre, scaled so that a ramp of slope s gives exactly +s), applied as
+ * out[x] = sum_j k[j] in[x + j - r] with r = size / 2. */
+MeshExtraction_EXPORT std::vector<float>
+                      GaussianKernel(double sigma, double spacing, unsigned int order);
+
 /** \class GaussianGradientMagnitudeScaleSpace
  * \brief Gradient-magnitude images of a region of a 3-D image at a list of scales,
  * sampled at arbitrary physical points.
@@ -187,10 +198,6 @@ public:
   static_assert(TImage::ImageDimension == 3, "GaussianGradientMagnitudeScaleSpace works on 3-D images");
   using PointType = typename ImageType::PointType;
   using RegionType = typename ImageType::RegionType;
-
-  /** Maximum error of the discrete Gaussian (its missing mass), which sets the
-   * kernel width: about 3.3 sigma each side. */
-  static constexpr double KernelMaximumError = 1e-3;
 
   /** Makes the scale space cover the queries in the box [lower, upper] of continuous
    * indices of `image` (the caller adds the capture range). Rebuilds only when the
@@ -325,57 +332,11 @@ public:
     return m_MaximumTopMagnitude;
   }
 
-  /** The one-dimensional kernel of GaussianDerivativeOperator for physical scale
-   * sigma along an axis of the given spacing: order 0 (sums to 1) or 1 (per
-   * millimetre, scaled so that a ramp of slope s gives exactly +s). */
-  static std::vector<float>
-  Kernel(double sigma, double spacing, unsigned int order)
-  {
-    GaussianDerivativeOperator<double, 3> op;
-    op.SetDirection(0);
-    op.SetSpacing(spacing);
-    op.SetVariance(sigma * sigma);
-    op.SetOrder(order);
-    op.SetNormalizeAcrossScale(false);
-    op.SetMaximumError(KernelMaximumError);
-    op.SetMaximumKernelWidth(100000);
-    op.CreateDirectional();
-    const unsigned int  n = static_cast<unsigned int>(op.GetSize()[0]);
-    const int           r = static_cast<int>(n / 2);
-    std::vector<double> k(n);
-    Offset<3>           o;
-    o.Fill(0);
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      o[0] = static_cast<OffsetValueType>(static_cast<int>(i) - r);
-      k[i] = op[op.GetNeighborhoodIndex(o)];
-    }
-    if (order == 1)
-    {
-      // out[x] = sum_j k[j] in[x + j - r]; on in[x] = x * spacing this must give
-      // exactly +1 (the truncated, clamped kernel gives 1 within a few per cent, with
-      // the sign of ITK's convention): a ramp's gradient is then exact.
-      double slope = 0.0;
-      for (unsigned int i = 0; i < n; ++i)
-      {
-        slope += k[i] * (static_cast<double>(i) - r) * spacing;
-      }
-      if (slope != 0.0)
-      {
-        for (auto & v : k)
-        {
-          v /= slope;
-        }
-      }
-    }
-    return std::vector<float>(k.begin(), k.end());
-  }
-
   /** Radius in voxels of the kernel for scale sigma on an axis of this spacing. */
   static unsigned int
   KernelRadius(double sigma, double spacing, unsigned int order)
   {
-    return static_cast<unsigned int>(Kernel(sigma, spacing, order).size() / 2);
+    return static_cast<unsigned int>(GaussianKernel(sigma, spacing, order).size() / 2);
   }
 
 private:
@@ -475,8 +436,8 @@ private:
       std::vector<float> d[3];
       for (unsigned int axis = 0; axis < 3; ++axis)
       {
-        g[axis] = Kernel(sigma, m_Spacing[axis], 0);
-        d[axis] = Kernel(sigma, m_Spacing[axis], 1);
+        g[axis] = GaussianKernel(sigma, m_Spacing[axis], 0);
+        d[axis] = GaussianKernel(sigma, m_Spacing[axis], 1);
       }
       std::vector<float> & magnitude = m_Magnitudes[k];
       magnitude.assign(m_NumberOfVoxels, 0.0f);

@@ -19,10 +19,10 @@
 #define itkMeshExtractionSurfaceNetsRelaxation_h
 
 #include "itkMeshExtractionBuffer.h"
+#include "itkMeshExtractionGaussianScaleSpace.h"
 #include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSurfaceNets.h"
-#include "itkDiscreteGaussianDerivativeImageFunction.h"
 #include "itkImage.h"
 
 #include <algorithm>
@@ -161,9 +161,9 @@ private:
   std::int64_t      m_Size[3];
 };
 
-/** \brief Gaussian-derivative gradients (ITK's DiscreteGaussianDerivativeImageFunction,
- * one per derivative direction and work unit) at the corner voxels of every surface
- * cell, computed once and trilinearly interpolated inside a node's cell.
+/** \brief Gaussian-derivative gradients (the separable kernels of GaussianKernel, from
+ * ITK's GaussianDerivativeOperator) at the corner voxels of every surface cell,
+ * computed once, in parallel, and trilinearly interpolated inside a node's cell.
  *
  * (ITK 5.2's GaussianDerivativeImageFunction is not used: it applies a 1-D
  * derivative kernel without blurring across it, and returns the negated
@@ -179,7 +179,6 @@ public:
     for (unsigned int d = 0; d < 3; ++d)
     {
       m_Size[d] = static_cast<std::int64_t>(region.GetSize(d));
-      m_Start[d] = region.GetIndex(d);
     }
     m_Keys.reserve(net.cells.size() * 2);
     for (const auto & c : net.cells)
@@ -193,40 +192,72 @@ public:
     std::sort(m_Keys.begin(), m_Keys.end());
     m_Keys.erase(std::unique(m_Keys.begin(), m_Keys.end()), m_Keys.end());
     m_Gradients.resize(m_Keys.size());
-    const auto & spacing = image->GetSpacing();
-    // Initialize() builds the kernels with ITK's (multithreaded) filters, and
-    // evaluation changes mutable state: one set of functions, used serially.
-    using FunctionType = DiscreteGaussianDerivativeImageFunction<TImage, double>;
-    typename FunctionType::Pointer derivative[3];
+    // Per axis d, the derivative kernel along d and the Gaussian along the other two,
+    // applied at each corner voxel in one pass over its neighbourhood; voxels beyond
+    // the image take the value of the nearest image voxel (zero flux, as ITK's
+    // neighbourhood functions do).
+    std::vector<float> smooth[3];
+    std::vector<float> derivative[3];
+    int                radius[3];
     for (unsigned int d = 0; d < 3; ++d)
     {
-      derivative[d] = FunctionType::New();
-      derivative[d]->SetInputImage(image);
-      derivative[d]->SetSigma(sigma);
-      derivative[d]->SetUseImageSpacing(true);
-      derivative[d]->SetNormalizeAcrossScale(false);
-      typename FunctionType::OrderArrayType order;
-      order.Fill(0);
-      order[d] = 1;
-      derivative[d]->SetOrder(order);
-      derivative[d]->Initialize();
+      smooth[d] = GaussianKernel(sigma, image->GetSpacing()[d], 0);
+      derivative[d] = GaussianKernel(sigma, image->GetSpacing()[d], 1);
+      // Both centred, the shorter padded with zeros to the longer's size.
+      auto &            shorter = smooth[d].size() < derivative[d].size() ? smooth[d] : derivative[d];
+      const std::size_t pad = (std::max(smooth[d].size(), derivative[d].size()) - shorter.size()) / 2;
+      shorter.insert(shorter.begin(), pad, 0.0f);
+      shorter.insert(shorter.end(), pad, 0.0f);
+      radius[d] = static_cast<int>(smooth[d].size() / 2);
     }
-    for (std::size_t i = 0; i < m_Keys.size(); ++i)
-    {
-      std::int64_t xyz[3];
-      Unkey(m_Keys[i], xyz);
-      typename TImage::IndexType index;
-      for (unsigned int d = 0; d < 3; ++d)
+    const auto *       buffer = image->GetBufferPointer();
+    const std::int64_t sx = m_Size[0];
+    const std::int64_t sxy = m_Size[0] * m_Size[1];
+    ParallelForBlocks(m_Keys.size(), 4096, [&](std::size_t begin, std::size_t end, std::size_t) {
+      std::vector<std::int64_t> xs(smooth[0].size());
+      for (std::size_t i = begin; i < end; ++i)
       {
+        std::int64_t xyz[3];
+        Unkey(m_Keys[i], xyz);
         // Voxels beyond the image take the gradient of the nearest image voxel.
-        index[d] = m_Start[d] + std::clamp<std::int64_t>(xyz[d], 0, m_Size[d] - 1);
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          xyz[d] = std::clamp<std::int64_t>(xyz[d], 0, m_Size[d] - 1);
+        }
+        auto at = [](std::int64_t v, std::int64_t size) { return std::clamp<std::int64_t>(v, 0, size - 1); };
+        for (int a = -radius[0]; a <= radius[0]; ++a)
+        {
+          xs[static_cast<std::size_t>(a + radius[0])] = at(xyz[0] + a, m_Size[0]);
+        }
+        double gradient[3] = { 0.0, 0.0, 0.0 };
+        for (int c = -radius[2]; c <= radius[2]; ++c)
+        {
+          const std::int64_t z = at(xyz[2] + c, m_Size[2]);
+          const auto         kc = static_cast<std::size_t>(c + radius[2]);
+          for (int b = -radius[1]; b <= radius[1]; ++b)
+          {
+            const auto * row = buffer + z * sxy + at(xyz[1] + b, m_Size[1]) * sx;
+            double       rowSmooth = 0.0;
+            double       rowDerivative = 0.0;
+            for (std::size_t a = 0; a < xs.size(); ++a)
+            {
+              const auto value = static_cast<double>(row[xs[a]]);
+              rowSmooth += smooth[0][a] * value;
+              rowDerivative += derivative[0][a] * value;
+            }
+            const auto kb = static_cast<std::size_t>(b + radius[1]);
+            gradient[0] += smooth[1][kb] * smooth[2][kc] * rowDerivative;
+            gradient[1] += derivative[1][kb] * smooth[2][kc] * rowSmooth;
+            gradient[2] += smooth[1][kb] * derivative[2][kc] * rowSmooth;
+          }
+        }
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          // Per millimetre along the image axis -> per voxel.
+          m_Gradients[i][d] = gradient[d] * image->GetSpacing()[d];
+        }
       }
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        // Per millimetre along the image axis -> per voxel.
-        m_Gradients[i][d] = derivative[d]->EvaluateAtIndex(index) * spacing[d];
-      }
-    }
+    });
   }
 
   /** dI/d(index) at p, a point of the node's cell `cell`. */
@@ -270,7 +301,6 @@ private:
 
   const SurfaceNet &        m_Net;
   std::int64_t              m_Size[3];
-  IndexValueType            m_Start[3];
   std::vector<std::int64_t> m_Keys;
   std::vector<Vec3>         m_Gradients;
 };

@@ -22,6 +22,7 @@
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
+#include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkTriangleMeshQualityCalculator.h"
@@ -1030,6 +1031,43 @@ TEST(SurfaceNetsImageToMeshFilter, GaussianDerivativeGradientsHandleNoise)
   EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
   EXPECT_EQ(q.connectedComponents, 1);
   EXPECT_LE(Distance(filter->GetOutput(), ME::MakePhantomSurface(ME::PhantomShape::Sphere, grid)).vertices.mean, 0.15);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, GaussianDerivativeGradientsAreExactOnQuadratics)
+{
+  // I = x^2 / 2 + 2 y - z^2 / 4 (x, y, z voxel indices), on anisotropic voxels: the
+  // Gaussian derivative of a quadratic is its derivative, so away from the border the
+  // gradient per voxel index is (x, 2, -z / 2), at cell corners and, trilinearly, inside.
+  auto         image = MakeImage<FloatImage>(36, 40, 30);
+  const double spacing[3] = { 0.5, 1.0, 2.0 };
+  image->SetSpacing(spacing);
+  for (itk::ImageRegionIteratorWithIndex<FloatImage> it(image, image->GetBufferedRegion()); !it.IsAtEnd(); ++it)
+  {
+    const auto & i = it.GetIndex();
+    it.Set(static_cast<float>(0.5 * i[0] * i[0] + 2.0 * i[1] - 0.25 * i[2] * i[2]));
+  }
+  ME::SurfaceNet net;
+  for (const auto & c : { std::array<int, 3>{ 15, 17, 12 }, std::array<int, 3>{ 20, 22, 16 } })
+  {
+    ME::SurfaceCell cell{};
+    cell.x = c[0];
+    cell.y = c[1];
+    cell.z = c[2];
+    net.cells.push_back(cell);
+  }
+  const ME::SurfaceNetsGaussianGradient<FloatImage> gaussian(image, net, 1.5);
+  for (std::uint32_t k = 0; k < net.cells.size(); ++k)
+  {
+    const auto & c = net.cells[k];
+    for (const double t : { 0.0, 0.5, 1.0 })
+    {
+      const ME::Vec3 p = ME::MakeVec3(c.x + t, c.y + t, c.z + t);
+      const ME::Vec3 g = gaussian.Gradient(p, k);
+      EXPECT_NEAR(g[0], p[0], 1e-4 * p[0]) << k << ' ' << t;
+      EXPECT_NEAR(g[1], 2.0, 1e-4);
+      EXPECT_NEAR(g[2], -0.5 * p[2], 1e-4 * p[2]);
+    }
+  }
 }
 
 TEST(SurfaceNetsImageToMeshFilter, BadInputRaisesClearExceptions)
