@@ -30,9 +30,12 @@
 #include "gtest/gtest.h"
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 using namespace MeshExtractionTest;
 namespace ME = itk::MeshExtraction;
@@ -986,6 +989,70 @@ TEST(SurfaceNetsImageToMeshFilter, MeshCellsShareOneBlockThatGoesWithTheLastCell
   EXPECT_EQ(Quad::GetNumberOfBlocks(), quadsBefore + 1);
   delete cells.back();
   EXPECT_EQ(Quad::GetNumberOfBlocks(), quadsBefore);
+}
+
+namespace
+{
+/** A triangle cell whose constructor throws on its `throwAt`-th call, as an
+ * allocating constructor (ITK 5.2's) may. */
+class ThrowingTriangle : public itk::TriangleCell<MeshType::CellType>
+{
+public:
+  ThrowingTriangle()
+  {
+    if (++constructed == throwAt)
+    {
+      throw std::runtime_error("cell constructor failed");
+    }
+    ++alive;
+  }
+  ~ThrowingTriangle() override
+  {
+    --alive;
+  }
+  static std::atomic<std::size_t> constructed;
+  static std::atomic<std::size_t> alive;
+  static std::size_t              throwAt;
+};
+std::atomic<std::size_t> ThrowingTriangle::constructed{ 0 };
+std::atomic<std::size_t> ThrowingTriangle::alive{ 0 };
+std::size_t              ThrowingTriangle::throwAt = 0;
+} // namespace
+
+TEST(SurfaceNetsImageToMeshFilter, CellBlockLeavesNothingWhenAConstructorThrows)
+{
+  using Cell = ME::BlockAllocatedCell<ThrowingTriangle>;
+  const std::size_t                 blocksBefore = Cell::GetNumberOfBlocks();
+  std::vector<MeshType::CellType *> cells(50000, nullptr);
+
+  // Each cell in its slot: the addresses rise by one slot a cell.
+  ThrowingTriangle::throwAt = 0;
+  Cell::MakeCells(cells.size(), cells.begin());
+  EXPECT_EQ(ThrowingTriangle::alive.load(), cells.size());
+  EXPECT_EQ(Cell::GetNumberOfBlocks(), blocksBefore + 1);
+  const auto slot = reinterpret_cast<std::uintptr_t>(cells[1]) - reinterpret_cast<std::uintptr_t>(cells[0]);
+  for (std::size_t i = 1; i < cells.size(); ++i)
+  {
+    ASSERT_EQ(reinterpret_cast<std::uintptr_t>(cells[i]) - reinterpret_cast<std::uintptr_t>(cells[i - 1]), slot);
+  }
+  for (auto *& cell : cells)
+  {
+    delete cell;
+    cell = nullptr;
+  }
+  EXPECT_EQ(ThrowingTriangle::alive.load(), 0u);
+  EXPECT_EQ(Cell::GetNumberOfBlocks(), blocksBefore);
+
+  // A constructor that throws part-way (the 20,000th of 50,000): the exception reaches
+  // the caller, and no cell, block or address is left.
+  ThrowingTriangle::constructed = 0;
+  ThrowingTriangle::throwAt = 20000;
+  EXPECT_THROW(Cell::MakeCells(cells.size(), cells.begin()), std::runtime_error);
+  EXPECT_EQ(ThrowingTriangle::constructed.load(), ThrowingTriangle::throwAt);
+  EXPECT_EQ(ThrowingTriangle::alive.load(), 0u);
+  EXPECT_EQ(Cell::GetNumberOfBlocks(), blocksBefore);
+  EXPECT_TRUE(std::all_of(cells.begin(), cells.end(), [](const MeshType::CellType * c) { return c == nullptr; }));
+  ThrowingTriangle::throwAt = 0;
 }
 
 TEST(SurfaceNetsImageToMeshFilter, SegmentationRelaxedTowardTheGreyscaleIsoSurface)
