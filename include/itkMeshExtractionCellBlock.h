@@ -47,7 +47,8 @@ public:
 
   /** Makes `count` default-constructed cells in one block and writes their
    * addresses to `cells[0 .. count)`; the block is released with its last cell.
-   * Throws std::bad_alloc, and then makes none (the addresses it wrote are set to null). */
+   * If the block cannot be allocated (std::bad_alloc) or a cell constructor throws,
+   * the exception is rethrown and none is made (the addresses it wrote are set to null). */
   template <typename TOutputIterator>
   static void
   MakeCells(std::size_t count, TOutputIterator cells)
@@ -73,10 +74,7 @@ public:
         std::launder(reinterpret_cast<BlockAllocatedCell *>(SlotOf(block, i) + Prefix))->~BlockAllocatedCell();
         cells[i] = nullptr;
       }
-      const std::size_t bytes = block->bytes;
-      block->~Block();
-      ReleaseLargeBlock(block, bytes);
-      --LiveBlocks();
+      ReleaseBlock(block);
       throw;
     }
   }
@@ -103,10 +101,7 @@ public:
     Block * block = *reinterpret_cast<Block **>(static_cast<char *>(cell) - Prefix);
     if (block->live.fetch_sub(1, std::memory_order_acq_rel) == 1)
     {
-      const std::size_t bytes = block->bytes;
-      block->~Block();
-      ReleaseLargeBlock(block, bytes);
-      --LiveBlocks();
+      ReleaseBlock(block);
     }
   }
 
@@ -152,6 +147,15 @@ private:
     block->bytes = bytes;
     ++LiveBlocks();
     return block;
+  }
+
+  static void
+  ReleaseBlock(Block * block) noexcept
+  {
+    const std::size_t bytes = block->bytes;
+    block->~Block();
+    ReleaseLargeBlock(block, bytes);
+    --LiveBlocks();
   }
 
   static char *

@@ -213,6 +213,7 @@ public:
     const auto *       buffer = image->GetBufferPointer();
     const std::int64_t sx = m_Size[0];
     const std::int64_t sxy = m_Size[0] * m_Size[1];
+    auto               at = [](std::int64_t v, std::int64_t size) { return std::clamp<std::int64_t>(v, 0, size - 1); };
     ParallelForBlocks(m_Keys.size(), 4096, [&](std::size_t begin, std::size_t end, std::size_t) {
       std::vector<std::int64_t> xs(smooth[0].size());
       for (std::size_t i = begin; i < end; ++i)
@@ -222,9 +223,8 @@ public:
         // Voxels beyond the image take the gradient of the nearest image voxel.
         for (unsigned int d = 0; d < 3; ++d)
         {
-          xyz[d] = std::clamp<std::int64_t>(xyz[d], 0, m_Size[d] - 1);
+          xyz[d] = at(xyz[d], m_Size[d]);
         }
-        auto at = [](std::int64_t v, std::int64_t size) { return std::clamp<std::int64_t>(v, 0, size - 1); };
         for (int a = -radius[0]; a <= radius[0]; ++a)
         {
           xs[static_cast<std::size_t>(a + radius[0])] = at(xyz[0] + a, m_Size[0]);
