@@ -28,6 +28,8 @@
 #include "itkQuadEdgeMeshToQuadEdgeMeshFilter.h"
 
 #include <iosfwd>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace itk
@@ -185,6 +187,17 @@ public:
   PrintSteps(std::ostream & os, double referenceRadius = std::numeric_limits<double>::quiet_NaN()) const
   {
     MeshExtraction::PrintScaleSpaceRefinementTable(os, m_Steps, referenceRadius);
+  }
+
+  /** GetSteps() as CSV with a header row (MeshExtraction::WriteScaleSpaceRefinementCSV;
+   * empty fields where a quantity does not apply). For Python, where the step structure
+   * is not wrapped: csv.DictReader(io.StringIO(f.GetStepsAsCSV())). */
+  std::string
+  GetStepsAsCSV() const
+  {
+    std::ostringstream os;
+    MeshExtraction::WriteScaleSpaceRefinementCSV(os, m_Steps);
+    return os.str();
   }
 
 protected:

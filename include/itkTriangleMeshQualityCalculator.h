@@ -23,6 +23,9 @@
 #include "itkObject.h"
 #include "itkObjectFactory.h"
 
+#include <sstream>
+#include <string>
+
 namespace itk
 {
 /** \class TriangleMeshQualityCalculator
@@ -101,6 +104,15 @@ public:
   GetReport() const
   {
     return m_Report;
+  }
+  /** The report as one JSON object, as the CLI's `--report-json` writes it. For
+   * Python, where the report structure is not wrapped: json.loads(c.GetReportAsJSON()). */
+  std::string
+  GetReportAsJSON() const
+  {
+    std::ostringstream os;
+    m_Report.PrintJSON(os);
+    return os.str();
   }
   double
   GetMeanQArea() const

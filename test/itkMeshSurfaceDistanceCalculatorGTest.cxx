@@ -68,6 +68,11 @@ TEST(MeshSurfaceDistanceCalculator, DistancesToAnAnalyticSphereAreExact)
   EXPECT_TRUE(calculator->GetReport().symmetric);
   EXPECT_GE(calculator->GetHausdorffDistance(), calculator->GetFaceCentroidDistance().maximum - 1e-12);
   EXPECT_LT(calculator->GetHausdorffDistance(), 0.1);
+  // Python reads the report through GetReportAsJSON().
+  const std::string json = calculator->GetReportAsJSON();
+  EXPECT_EQ(json.rfind("{\"reference\": \"implicit surface (SphereImplicitSurface)", 0), 0u) << json;
+  EXPECT_NE(json.find("\"vertices\": {\"count\": " + std::to_string(m.points.size()) + ","), std::string::npos);
+  EXPECT_NE(json.find("\"symmetric\": true}"), std::string::npos);
 }
 
 TEST(MeshSurfaceDistanceCalculator, DistancesToAnAnalyticPlaneAreExact)

@@ -388,11 +388,10 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, StopsAtTheCycleLimitAndReportsIt)
     operations.push_back(line.substr(0, line.find(' ')));
   }
   EXPECT_EQ(operations, (std::vector<std::string>{ "Org", "ED", "ES", "S", "S", "ED", "ES" }));
-  std::ostringstream csv;
-  ME::WriteScaleSpaceRefinementCSV(csv, steps);
-  const std::string text = csv.str();
+  const std::string text = filter->GetStepsAsCSV(); // MeshExtraction::WriteScaleSpaceRefinementCSV
   EXPECT_EQ(text.substr(0, 30), "operation,cycle,points,triangl");
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 8);
+  EXPECT_NE(text.find("\nES,1,"), std::string::npos);
 }
 
 TEST(ScaleSpaceEdgeMeshRefinementFilter, BadInputRaisesClearExceptions)

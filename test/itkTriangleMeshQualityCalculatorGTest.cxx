@@ -360,7 +360,11 @@ TEST(TriangleMeshQualityCalculator, MissingMeshAndMissingPointsThrow)
 
 TEST(TriangleMeshQualityCalculator, ReportsPrintAsTextAndJSON)
 {
-  const auto         r = Analyze(MakeIcosphere(1));
+  auto       calculator = itk::TriangleMeshQualityCalculator<MeshType>::New();
+  const auto mesh = ToITKMesh<MeshType>(MakeIcosphere(1));
+  calculator->SetMesh(mesh);
+  calculator->Compute();
+  const auto &       r = calculator->GetReport();
   std::ostringstream text;
   r.Print(text, "sphere");
   EXPECT_NE(text.str().find("q_area"), std::string::npos);
@@ -370,4 +374,8 @@ TEST(TriangleMeshQualityCalculator, ReportsPrintAsTextAndJSON)
   EXPECT_EQ(json.str().front(), '{');
   EXPECT_EQ(json.str().back(), '}');
   EXPECT_NE(json.str().find("\"euler_characteristic\": 2"), std::string::npos);
+  // Python reads the report through GetReportAsJSON(): the same object.
+  EXPECT_EQ(calculator->GetReportAsJSON(), json.str());
+  EXPECT_NE(json.str().find("\"triangles\": 80,"), std::string::npos);
+  EXPECT_NE(json.str().find("\"valid_closed_surface\": true}"), std::string::npos);
 }
