@@ -19,6 +19,7 @@
 #define MeshExtractionQualityCommand_h
 
 #include "MeshExtractionCommandHelpers.h"
+#include "itkMeshExtractionJSON.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkTriangleMeshQualityCalculator.h"
 
@@ -83,7 +84,7 @@ WriteJSON(const std::vector<MeasuredMesh> & meshes, const std::string & path)
   out << "[\n";
   for (std::size_t i = 0; i < meshes.size(); ++i)
   {
-    out << "  {\"mesh\": \"" << meshes[i].name << "\", \"quality\": ";
+    out << "  {\"mesh\": " << itk::MeshExtraction::JSONString{ meshes[i].name } << ", \"quality\": ";
     meshes[i].quality.PrintJSON(out);
     if (meshes[i].hasDistance)
     {

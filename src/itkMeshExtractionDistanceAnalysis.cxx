@@ -17,6 +17,7 @@
  *=========================================================================*/
 #include "itkMeshExtractionDistanceAnalysis.h"
 #include "itkImplicitSurfaceFunction.h"
+#include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionParallel.h"
 
 #include <cmath>
@@ -392,10 +393,10 @@ MeshSurfaceDistanceReport::PrintJSON(std::ostream & os) const
   const auto precision = os.precision();
   os << std::setprecision(10);
   auto stats = [&os](const DistanceStatistics & s) {
-    os << "{\"count\": " << s.count << ", \"mean\": " << s.mean << ", \"rms\": " << s.rms << ", \"max\": " << s.maximum
-       << ", \"signed_mean\": " << s.signedMean << "}";
+    os << "{\"count\": " << s.count << ", \"mean\": " << JSONNumber{ s.mean } << ", \"rms\": " << JSONNumber{ s.rms }
+       << ", \"max\": " << JSONNumber{ s.maximum } << ", \"signed_mean\": " << JSONNumber{ s.signedMean } << "}";
   };
-  os << "{\"reference\": \"" << referenceDescription << "\", \"vertices\": ";
+  os << "{\"reference\": " << JSONString{ referenceDescription } << ", \"vertices\": ";
   stats(vertices);
   os << ", \"face_centroids\": ";
   stats(faceCentroids);
@@ -403,7 +404,7 @@ MeshSurfaceDistanceReport::PrintJSON(std::ostream & os) const
   stats(meshSamples);
   os << ", \"reference_samples\": ";
   stats(referenceSamples);
-  os << ", \"hausdorff\": " << hausdorff << ", \"symmetric\": " << (symmetric ? "true" : "false") << "}";
+  os << ", \"hausdorff\": " << JSONNumber{ hausdorff } << ", \"symmetric\": " << (symmetric ? "true" : "false") << "}";
   os.precision(precision);
 }
 

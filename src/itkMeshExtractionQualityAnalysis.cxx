@@ -16,6 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionQualityAnalysis.h"
+#include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionPredicates.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
@@ -67,10 +68,11 @@ PrintStatistics(std::ostream & os, const char * name, const ValueStatistics & s)
 void
 PrintStatisticsJSON(std::ostream & os, const ValueStatistics & s)
 {
-  os << "{\"count\": " << s.count << ", \"mean\": " << s.mean << ", \"min\": " << s.minimum
-     << ", \"max\": " << s.maximum << ", \"p01\": " << s.percentile01 << ", \"p05\": " << s.percentile05
-     << ", \"median\": " << s.median << ", \"p95\": " << s.percentile95 << ", \"histogram_range\": ["
-     << s.histogramLower << ", " << s.histogramUpper << "], \"histogram\": [";
+  os << "{\"count\": " << s.count << ", \"mean\": " << JSONNumber{ s.mean } << ", \"min\": " << JSONNumber{ s.minimum }
+     << ", \"max\": " << JSONNumber{ s.maximum } << ", \"p01\": " << JSONNumber{ s.percentile01 }
+     << ", \"p05\": " << JSONNumber{ s.percentile05 } << ", \"median\": " << JSONNumber{ s.median }
+     << ", \"p95\": " << JSONNumber{ s.percentile95 } << ", \"histogram_range\": [" << JSONNumber{ s.histogramLower }
+     << ", " << JSONNumber{ s.histogramUpper } << "], \"histogram\": [";
   for (std::size_t i = 0; i < s.histogram.size(); ++i)
   {
     os << (i ? ", " : "") << s.histogram[i];
@@ -936,9 +938,10 @@ TriangleMeshQualityReport::PrintJSON(std::ostream & os) const
   PrintStatisticsJSON(os, maximumAngle);
   os << ", \"edge_length\": ";
   PrintStatisticsJSON(os, edgeLength);
-  os << ", \"fraction_q_angle_below_0_3\": " << fractionQAngleBelow03 << ", \"mean_smoothness\": " << meanSmoothness
-     << ", \"interior_vertices\": " << numberOfInteriorVertices << ", \"fraction_valence_6\": " << fractionValence6
-     << ", \"valence_histogram\": [";
+  os << ", \"fraction_q_angle_below_0_3\": " << JSONNumber{ fractionQAngleBelow03 }
+     << ", \"mean_smoothness\": " << JSONNumber{ meanSmoothness }
+     << ", \"interior_vertices\": " << numberOfInteriorVertices
+     << ", \"fraction_valence_6\": " << JSONNumber{ fractionValence6 } << ", \"valence_histogram\": [";
   for (std::size_t d = 0; d < valenceHistogram.size(); ++d)
   {
     os << (d ? ", " : "") << valenceHistogram[d];
@@ -953,8 +956,8 @@ TriangleMeshQualityReport::PrintJSON(std::ostream & os) const
      << ", \"unreferenced_points\": " << unreferencedPoints << ", \"connected_components\": " << connectedComponents
      << ", \"euler_characteristic\": " << eulerCharacteristic << ", \"genus\": " << genus
      << ", \"self_intersecting_pairs\": " << selfIntersectingPairs
-     << ", \"self_intersecting_triangles\": " << selfIntersectingTriangles << ", \"total_area\": " << totalArea
-     << ", \"enclosed_volume\": " << enclosedVolume
+     << ", \"self_intersecting_triangles\": " << selfIntersectingTriangles
+     << ", \"total_area\": " << JSONNumber{ totalArea } << ", \"enclosed_volume\": " << JSONNumber{ enclosedVolume }
      << ", \"valid_closed_surface\": " << (IsValidClosedSurface() ? "true" : "false") << "}";
   os.precision(precision);
 }

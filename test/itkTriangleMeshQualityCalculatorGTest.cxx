@@ -16,12 +16,14 @@
  *
  *=========================================================================*/
 #include "itkTriangleMeshQualityCalculator.h"
+#include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkQuadrilateralCell.h"
 #include "itkPolygonCell.h"
 
 #include "gtest/gtest.h"
 
+#include <limits>
 #include <sstream>
 
 using namespace MeshExtractionTest;
@@ -378,4 +380,26 @@ TEST(TriangleMeshQualityCalculator, ReportsPrintAsTextAndJSON)
   EXPECT_EQ(calculator->GetReportAsJSON(), json.str());
   EXPECT_NE(json.str().find("\"triangles\": 80,"), std::string::npos);
   EXPECT_NE(json.str().find("\"valid_closed_surface\": true}"), std::string::npos);
+}
+
+TEST(TriangleMeshQualityCalculator, JSONReportOfAMeshWithANaNPointStaysValidJSON)
+{
+  // A NaN point gives NaN measures; JSON has no NaN, so they are written as null.
+  IndexedTriangleMesh m = MakeIcosphere(1);
+  m.points[0][0] = std::numeric_limits<double>::quiet_NaN();
+  auto       calculator = itk::TriangleMeshQualityCalculator<MeshType>::New();
+  const auto mesh = ToITKMesh<MeshType>(m);
+  calculator->SetMesh(mesh);
+  calculator->Compute();
+  const std::string json = calculator->GetReportAsJSON();
+  EXPECT_EQ(json.find("nan"), std::string::npos) << json;
+  EXPECT_EQ(json.find("inf"), std::string::npos) << json;
+  EXPECT_NE(json.find("null"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"valid_closed_surface\": false}"), std::string::npos) << json;
+
+  std::ostringstream text;
+  text << itk::MeshExtraction::JSONString{ std::string("a\"b\\c\n") } << ' '
+       << itk::MeshExtraction::JSONNumber{ -std::numeric_limits<double>::infinity() } << ' '
+       << itk::MeshExtraction::JSONNumber{ 0.25 };
+  EXPECT_EQ(text.str(), "\"a\\\"b\\\\c\\u000a\" null 0.25");
 }
