@@ -25,6 +25,7 @@
 
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace itk
 {
@@ -140,6 +141,23 @@ public:
   {
     return m_TriangleMeasures;
   }
+  /** q_area, q_angle and q_length of every measured triangle, in the order of
+   * GetTriangleMeasures(): plain arrays, which Python reads as tuples (numpy.asarray). */
+  std::vector<double>
+  GetTriangleQAreas() const
+  {
+    return this->CollectTriangleMeasure(&TriangleMeasuresType::qArea);
+  }
+  std::vector<double>
+  GetTriangleQAngles() const
+  {
+    return this->CollectTriangleMeasure(&TriangleMeasuresType::qAngle);
+  }
+  std::vector<double>
+  GetTriangleQLengths() const
+  {
+    return this->CollectTriangleMeasure(&TriangleMeasuresType::qLength);
+  }
   /** Cell identifier of every measured triangle. */
   const std::vector<IdentifierType> &
   GetTriangleCellIdentifiers() const
@@ -160,6 +178,18 @@ protected:
   PrintSelf(std::ostream & os, Indent indent) const override;
 
 private:
+  std::vector<double>
+  CollectTriangleMeasure(double TriangleMeasuresType::*measure) const
+  {
+    std::vector<double> values;
+    values.reserve(m_TriangleMeasures.size());
+    for (const auto & m : m_TriangleMeasures)
+    {
+      values.push_back(m.*measure);
+    }
+    return values;
+  }
+
   typename MeshType::ConstPointer m_Mesh;
   typename MeshType::ConstPointer m_ReferenceMesh;
   double                          m_DegenerateQAreaTolerance{ 1e-6 };

@@ -24,6 +24,7 @@
 #include "gtest/gtest.h"
 
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 using namespace MeshExtractionTest;
@@ -380,6 +381,22 @@ TEST(TriangleMeshQualityCalculator, ReportsPrintAsTextAndJSON)
   EXPECT_EQ(calculator->GetReportAsJSON(), json.str());
   EXPECT_NE(json.str().find("\"triangles\": 80,"), std::string::npos);
   EXPECT_NE(json.str().find("\"valid_closed_surface\": true}"), std::string::npos);
+  // Per-triangle values as plain arrays (for Python), in measure order.
+  const auto & measures = calculator->GetTriangleMeasures();
+  const auto   qArea = calculator->GetTriangleQAreas();
+  const auto   qAngle = calculator->GetTriangleQAngles();
+  const auto   qLength = calculator->GetTriangleQLengths();
+  ASSERT_EQ(measures.size(), 80u);
+  ASSERT_EQ(qArea.size(), 80u);
+  ASSERT_EQ(qAngle.size(), 80u);
+  ASSERT_EQ(qLength.size(), 80u);
+  for (std::size_t f = 0; f < measures.size(); ++f)
+  {
+    EXPECT_EQ(qArea[f], measures[f].qArea);
+    EXPECT_EQ(qAngle[f], measures[f].qAngle);
+    EXPECT_EQ(qLength[f], measures[f].qLength);
+  }
+  EXPECT_NEAR(std::accumulate(qArea.begin(), qArea.end(), 0.0) / 80.0, calculator->GetMeanQArea(), 1e-12);
 }
 
 TEST(TriangleMeshQualityCalculator, JSONReportOfAMeshWithANaNPointStaysValidJSON)

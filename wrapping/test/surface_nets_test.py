@@ -39,6 +39,11 @@ assert report["valid_closed_surface"], report
 assert report["euler_characteristic"] == 2, report
 assert report["triangles"] == mesh.GetNumberOfCells(), report
 assert abs(report["q_area"]["mean"] - calculator.GetMeanQArea()) < 1e-9, report
+# Per-triangle values as plain tuples.
+q_angles = calculator.GetTriangleQAngles()
+assert len(q_angles) == mesh.GetNumberOfCells(), len(q_angles)
+assert all(0.0 <= q <= 1.0 for q in q_angles), (min(q_angles), max(q_angles))
+assert abs(sum(calculator.GetTriangleQAreas()) / len(q_angles) - calculator.GetMeanQArea()) < 1e-9
 
 # Distances to the exact sphere, in physical units.
 distances = itk.MeshSurfaceDistanceCalculator[MeshType, MeshType].New()
