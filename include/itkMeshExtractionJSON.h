@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
+#include <sstream>
 #include <string>
 
 namespace itk
@@ -74,6 +75,16 @@ operator<<(std::ostream & os, const JSONString & text)
     }
   }
   return os << '"';
+}
+
+/** What `printable.PrintJSON(os)` writes, as a string (the calculators' GetReportAsJSON()). */
+template <typename TPrintable>
+std::string
+JSONText(const TPrintable & printable)
+{
+  std::ostringstream os;
+  printable.PrintJSON(os);
+  return os.str();
 }
 } // namespace MeshExtraction
 } // namespace itk

@@ -20,11 +20,11 @@
 
 #include "itkImplicitSurfaceFunction.h"
 #include "itkMeshExtractionDistanceAnalysis.h"
+#include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionMacros.h"
 #include "itkObject.h"
 #include "itkObjectFactory.h"
 
-#include <sstream>
 #include <string>
 
 namespace itk
@@ -107,9 +107,7 @@ public:
   std::string
   GetReportAsJSON() const
   {
-    std::ostringstream os;
-    m_Report.PrintJSON(os);
-    return os.str();
+    return MeshExtraction::JSONText(m_Report);
   }
   const StatisticsType &
   GetVertexDistance() const

@@ -18,12 +18,12 @@
 #ifndef itkTriangleMeshQualityCalculator_h
 #define itkTriangleMeshQualityCalculator_h
 
+#include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkObject.h"
 #include "itkObjectFactory.h"
 
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,9 +111,7 @@ public:
   std::string
   GetReportAsJSON() const
   {
-    std::ostringstream os;
-    m_Report.PrintJSON(os);
-    return os.str();
+    return MeshExtraction::JSONText(m_Report);
   }
   double
   GetMeanQArea() const
