@@ -243,11 +243,30 @@ CheckEdgeSwap(const EdgeSwapQuad & q, const EdgeSwapParameters & p)
   return EdgeSwapVerdict::Swap;
 }
 
-/** The whole decision: swap when the criterion improves and CheckEdgeSwap() passes. */
+/** True when neither angle opposite the edge (a, b) is obtuse: then their sum is at
+ * most pi, so the Delaunay criterion cannot improve. Two dot products, where the gain
+ * takes two arc tangents; it settles nearly every edge of a good mesh. The sum of the
+ * two computed angles is at most pi as well (each arc tangent of a non-negative
+ * cosine is at most the double nearest pi/2, and twice that is the double pi), so the
+ * decision is the one the gain gives. */
+inline bool
+NeitherOppositeAngleIsObtuse(const EdgeSwapQuad & q)
+{
+  return Dot(q.a - q.c, q.b - q.c) >= 0.0 && Dot(q.b - q.d, q.a - q.d) >= 0.0;
+}
+
+/** The whole decision: swap when the criterion improves and CheckEdgeSwap() passes.
+ * `gain` is left at 0 when the Delaunay criterion is ruled out by
+ * NeitherOppositeAngleIsObtuse() (its exact value there is not positive). */
 inline EdgeSwapDecision
 EvaluateEdgeSwap(const EdgeSwapQuad & q, const EdgeSwapParameters & p)
 {
   EdgeSwapDecision decision;
+  if (p.criterion == MeshExtractionEnums::EdgeSwapCriterion::Delaunay && NeitherOppositeAngleIsObtuse(q))
+  {
+    decision.verdict = EdgeSwapVerdict::NoImprovement;
+    return decision;
+  }
   decision.gain = EdgeSwapGain(p.criterion, q);
   if (!IsEdgeSwapImprovement(p.criterion, q, decision.gain))
   {

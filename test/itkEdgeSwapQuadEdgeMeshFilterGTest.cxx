@@ -245,6 +245,60 @@ TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayGainAgreesWithTheCircumcircleTestOfFigu
   EXPECT_GT(inside, 100);
 }
 
+TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayShortcutDecidesAsTheOppositeAngleSum)
+{
+  // EvaluateEdgeSwap skips the arc tangents when neither opposite angle is obtuse; the
+  // verdicts must be those of the exact gain, including right angles (a square, and
+  // apexes on the circle over the edge) and folded quads.
+  std::mt19937                           rng(11);
+  std::uniform_real_distribution<double> x(-0.5, 1.5);
+  std::uniform_real_distribution<double> y(0.05, 1.5);
+  std::uniform_real_distribution<double> z(-1.0, 1.0);
+  std::uniform_real_distribution<double> t(0.0, itk::Math::pi);
+  EdgeSwapParameters                     p;
+  p.criterion = Criterion::Delaunay;
+  auto exactVerdict = [&p](const EdgeSwapQuad & q) {
+    const double gain = itk::MeshExtraction::EdgeSwapGain(Criterion::Delaunay, q);
+    return itk::MeshExtraction::IsEdgeSwapImprovement(Criterion::Delaunay, q, gain)
+             ? itk::MeshExtraction::CheckEdgeSwap(q, p)
+             : EdgeSwapVerdict::NoImprovement;
+  };
+  int shortcuts = 0;
+  int swaps = 0;
+  for (int k = 0; k < 6000; ++k)
+  {
+    EdgeSwapQuad q;
+    if (k % 3 == 0)
+    {
+      // Apexes on the circle with diameter (a, b): both opposite angles are right.
+      const double s = t(rng);
+      const double r = t(rng);
+      q = FlatQuad(MakeVec3(0.5 + 0.5 * std::cos(s), 0.5 * std::sin(s), 0),
+                   MakeVec3(0.5 + 0.5 * std::cos(r), -0.5 * std::sin(r), 0));
+    }
+    else
+    {
+      q = FlatQuad(MakeVec3(x(rng), y(rng), 0), MakeVec3(x(rng), -y(rng), 0));
+      if (k % 3 == 2)
+      {
+        q.c[2] = z(rng);
+        q.d[2] = z(rng);
+      }
+    }
+    shortcuts += itk::MeshExtraction::NeitherOppositeAngleIsObtuse(q) ? 1 : 0;
+    const EdgeSwapVerdict verdict = itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict;
+    swaps += verdict == EdgeSwapVerdict::Swap ? 1 : 0;
+    EXPECT_EQ(verdict, exactVerdict(q)) << q.c << ' ' << q.d;
+  }
+  EXPECT_GT(shortcuts, 1000);
+  EXPECT_GT(swaps, 100);
+  // A square with (a, b) as its diagonal: right angles, no gain, no swap either way.
+  const EdgeSwapQuad square = FlatQuad(MakeVec3(0.5, 0.5, 0), MakeVec3(0.5, -0.5, 0));
+  EXPECT_TRUE(itk::MeshExtraction::NeitherOppositeAngleIsObtuse(square));
+  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(square, p).verdict, EdgeSwapVerdict::NoImprovement);
+  EXPECT_EQ(exactVerdict(square), EdgeSwapVerdict::NoImprovement);
+}
+
 TEST(EdgeSwapQuadEdgeMeshFilter, ConcaveQuadIsNeverSwapped)
 {
   // d sits so far to the right that the segment c-d passes outside the quad.
