@@ -267,10 +267,12 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
   // Positions are fixed here: a swapped pair, swapped or not, stays inside the box of
   // its four corners, so one tree serves every check below.
   AxisAlignedBoxArray boxes(mesh.triangles.size());
-  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
-  {
-    boxes[f] = TriangleBox(check, f);
-  }
+  ParallelForBlocks(mesh.triangles.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      boxes[f] = TriangleBox(check, static_cast<std::uint32_t>(f));
+    }
+  });
   std::vector<std::uint32_t> changed;
   for (const auto & s : swaps)
   {
@@ -385,38 +387,42 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   const std::size_t      numberOfTriangles = triangles.size();
   LargeBlockVector<Vec3> startPhysical(start.size());
   ToPhysical(start.data(), start.size(), origin, M, roundToFloat, startPhysical.data());
+  // The per-triangle loops below are independent per triangle: they run on the work
+  // units (the results do not depend on their number).
+  constexpr std::size_t  BlockSize = 8192;
   LargeBlockVector<Vec3> startNormals(numberOfTriangles);
-  for (std::size_t f = 0; f < numberOfTriangles; ++f)
-  {
-    const auto & t = triangles[f];
-    startNormals[f] = TriangleNormal(startPhysical[t[0]], startPhysical[t[1]], startPhysical[t[2]]);
-  }
+  ParallelForBlocks(numberOfTriangles, BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      const auto & t = triangles[f];
+      startNormals[f] = TriangleNormal(startPhysical[t[0]], startPhysical[t[1]], startPhysical[t[2]]);
+    }
+  });
   auto folded = [](const Vec3 & n, const Vec3 & m) { return Dot(n, m) < FoldCosine * Norm(n) * Norm(m); };
   std::vector<std::uint8_t> foldedAtStart(numberOfTriangles, 0);
-  for (std::uint32_t f = 0; f < numberOfTriangles; ++f)
-  {
-    for (unsigned int k = 0; k < 3; ++k)
-    {
-      if (folded(startNormals[f], startNormals[mesh.twin[3 * f + k] / 3]))
-      {
-        foldedAtStart[f] |= static_cast<std::uint8_t>(1u << k);
-      }
-    }
-  }
-  IndexedTriangleMesh check;
+  IndexedTriangleMesh       check;
   check.triangles = triangles;
   check.points = ToPhysical(positions, origin, M, roundToFloat);
   // Nodes only move back toward `start`: a tree of boxes around both positions of
   // every triangle serves every round.
   AxisAlignedBoxArray boxes(numberOfTriangles);
-  for (std::uint32_t f = 0; f < numberOfTriangles; ++f)
-  {
-    for (std::uint32_t v : triangles[f])
+  ParallelForBlocks(numberOfTriangles, BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
     {
-      boxes[f].Add(check.points[v]);
-      boxes[f].Add(startPhysical[v]);
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        if (folded(startNormals[f], startNormals[mesh.twin[3 * f + k] / 3]))
+        {
+          foldedAtStart[f] |= static_cast<std::uint8_t>(1u << k);
+        }
+      }
+      for (std::uint32_t v : triangles[f])
+      {
+        boxes[f].Add(check.points[v]);
+        boxes[f].Add(startPhysical[v]);
+      }
     }
-  }
+  });
   if (cache != nullptr)
   {
     // The cache needs boxes grown by half its margin: 0.4 of the mean edge length,
@@ -477,32 +483,43 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
         candidates.push_back(f);
       }
     }
-    std::vector<std::uint32_t> badNodes;
-    for (std::uint32_t f : candidates)
-    {
-      const auto & t = triangles[f];
-      const Vec3 & a = check.points[t[0]];
-      const Vec3 & b = check.points[t[1]];
-      const Vec3 & c = check.points[t[2]];
-      const Vec3   n = TriangleNormal(a, b, c);
-      if (!(Dot(n, startNormals[f]) > 0.0) || !(TriangleQArea(a, b, c) > tolerance))
+    // Flipped, degenerate or newly folded candidates, per block (the nodes are sorted
+    // and made unique below, so the blocks' order does not matter).
+    std::vector<std::vector<std::uint32_t>> badPerBlock((candidates.size() + BlockSize - 1) / BlockSize);
+    ParallelForBlocks(candidates.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
+      auto & bad = badPerBlock[block];
+      for (std::size_t i = begin; i < end; ++i)
       {
-        badNodes.insert(badNodes.end(), t.begin(), t.end());
-        continue;
-      }
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        if ((foldedAtStart[f] >> k) & 1u)
+        const std::uint32_t f = candidates[i];
+        const auto &        t = triangles[f];
+        const Vec3 &        a = check.points[t[0]];
+        const Vec3 &        b = check.points[t[1]];
+        const Vec3 &        c = check.points[t[2]];
+        const Vec3          n = TriangleNormal(a, b, c);
+        if (!(Dot(n, startNormals[f]) > 0.0) || !(TriangleQArea(a, b, c) > tolerance))
         {
+          bad.insert(bad.end(), t.begin(), t.end());
           continue;
         }
-        const auto & u = triangles[mesh.twin[3 * f + k] / 3];
-        if (folded(n, TriangleNormal(check.points[u[0]], check.points[u[1]], check.points[u[2]])))
+        for (unsigned int k = 0; k < 3; ++k)
         {
-          badNodes.insert(badNodes.end(), t.begin(), t.end());
-          badNodes.insert(badNodes.end(), u.begin(), u.end());
+          if ((foldedAtStart[f] >> k) & 1u)
+          {
+            continue;
+          }
+          const auto & u = triangles[mesh.twin[3 * f + k] / 3];
+          if (folded(n, TriangleNormal(check.points[u[0]], check.points[u[1]], check.points[u[2]])))
+          {
+            bad.insert(bad.end(), t.begin(), t.end());
+            bad.insert(bad.end(), u.begin(), u.end());
+          }
         }
       }
+    });
+    std::vector<std::uint32_t> badNodes;
+    for (const auto & bad : badPerBlock)
+    {
+      badNodes.insert(badNodes.end(), bad.begin(), bad.end());
     }
     for (const auto & p : FindSelfIntersections(check, candidates, tree, cache))
     {
