@@ -50,6 +50,7 @@ struct ExtractSettings
   unsigned int                    threads{ 0 };
   bool                            highQuality{ false };
   unsigned int                    rounds{ 8 };
+  double                          convergedSwaps{ 0.001 };
 };
 
 inline SurfaceNetsEnums::Relaxation
@@ -96,6 +97,7 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   filter->SetGradientSigma(s.sigma);
   filter->SetHighQuality(s.highQuality);
   filter->SetNumberOfImprovementRounds(s.rounds);
+  filter->SetConvergedSwapFraction(s.convergedSwaps);
   if (s.threads > 0)
   {
     filter->SetNumberOfWorkUnits(s.threads);
@@ -232,6 +234,11 @@ RunExtract(const Arguments & args)
     throw UsageError("--rounds must be >= 0");
   }
   s.rounds = static_cast<unsigned int>(rounds);
+  s.convergedSwaps = args.GetDouble("converged-swaps", 0.001);
+  if (!(s.convergedSwaps >= 0.0 && s.convergedSwaps <= 1.0))
+  {
+    throw UsageError("--converged-swaps must be in [0, 1]");
+  }
   const long threads = args.GetInteger("threads", 0);
   if (threads < 0)
   {
@@ -327,6 +334,10 @@ MakeExtractCommand()
     { "sigma", "MM", "Gaussian-derivative gradients of this scale instead of central differences", "" },
     { "quality", "standard|high", "high: alternate regularity edge swaps with SNERT on the triangles", "standard" },
     { "rounds", "N", "rounds of swaps and relaxation for --quality high", "8" },
+    { "converged-swaps",
+      "F",
+      "--quality high stops its rounds when one swaps fewer than this fraction of the triangles (0: none)",
+      "0.001" },
     { "threads", "N", "work units (0: all cores)", "0" },
     { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
     { "report-json", "FILE", "write the report as JSON", "" },

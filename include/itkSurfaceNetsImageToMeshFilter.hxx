@@ -71,6 +71,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
   {
     itkExceptionMacro("ImprovementCellDilation must be in [0, 0.5] voxels, got " << m_ImprovementCellDilation << '.');
   }
+  if (!(m_ConvergedSwapFraction >= 0.0 && m_ConvergedSwapFraction <= 1.0))
+  {
+    itkExceptionMacro("ConvergedSwapFraction must be in [0, 1], got " << m_ConvergedSwapFraction << '.');
+  }
   if (!(m_CellMargin >= 0.0 && m_CellMargin <= 0.25))
   {
     itkExceptionMacro("CellMargin must be in [0, 0.25] voxels, got " << m_CellMargin << '.');
@@ -320,11 +324,14 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
     auto                    swaps = SwapEdges(physical, mesh, swap, &refused);
     UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
     m_NumberOfSwaps += swaps.size();
-    if (swaps.empty() && round > 0)
+    const bool converged = swaps.empty() || static_cast<double>(swaps.size()) <
+                                              m_ConvergedSwapFraction * static_cast<double>(mesh.triangles.size());
+    if (converged && round > 0)
     {
-      // Nothing changed since the last relaxation: this round's iterations go to
-      // the last one, which saves a check (and gives the same mesh where the
-      // check moves nothing back).
+      // Few or no swaps: the rounds have converged, and this round's iterations go
+      // to the last relaxation, after the Delaunay pass (which saves a check, and
+      // gives the same mesh where nothing was swapped and the check moves nothing
+      // back).
       finalIterations += m_ImprovementIterations;
       break;
     }
@@ -652,6 +659,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "NumberOfImprovementRounds: " << m_NumberOfImprovementRounds << '\n';
   os << indent << "ImprovementIterations: " << m_ImprovementIterations << '\n';
   os << indent << "ImprovementCellDilation: " << m_ImprovementCellDilation << '\n';
+  os << indent << "ConvergedSwapFraction: " << m_ConvergedSwapFraction << '\n';
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << '\n';
   os << indent << "NumberOfRoundsPerformed: " << m_NumberOfRoundsPerformed << '\n';
   os << indent << "NumberOfIterations: " << m_NumberOfIterations << '\n';
