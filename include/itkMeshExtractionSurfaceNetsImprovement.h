@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace itk
@@ -46,6 +47,12 @@ struct MeshExtraction_EXPORT SurfaceNetTriangles
   /** Twins and valences from the triangles (throws if the surface is not closed and manifold). */
   void
   BuildConnectivity(std::size_t numberOfPoints);
+  /** Gives the faces new corners (face, corners) that cover the same part of the
+   * surface together, as the two triangles of an edge swap do either way, and updates
+   * the twins and valences there only: the result is BuildConnectivity()'s, in time
+   * proportional to the faces replaced (throws if they do not close up). */
+  void
+  ReplaceTriangles(const std::vector<std::pair<std::uint32_t, TriangleIndices>> & replacements);
   /** True if the vertices u and v share an edge (walks the fan of u). */
   bool
   HasEdge(std::uint32_t u, std::uint32_t v, std::uint32_t halfEdgeFromU) const;

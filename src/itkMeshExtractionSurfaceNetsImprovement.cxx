@@ -52,6 +52,15 @@ Previous(std::uint32_t h)
 {
   return h - h % 3 + (h % 3 + 2) % 3;
 }
+
+/** The ends of half-edge h, the smaller first. */
+inline std::pair<std::uint32_t, std::uint32_t>
+EdgeEnds(const std::vector<TriangleIndices> & triangles, std::uint32_t h)
+{
+  const std::uint32_t u = triangles[h / 3][h % 3];
+  const std::uint32_t v = triangles[h / 3][(h % 3 + 1) % 3];
+  return std::make_pair(std::min(u, v), std::max(u, v));
+}
 } // namespace
 
 void
@@ -61,12 +70,8 @@ SurfaceNetTriangles::BuildConnectivity(std::size_t numberOfPoints)
   // half-edge order), then each group sorted by the upper vertex: the two
   // half-edges of an edge meet. O(n), where one sort of all 3n edge keys took
   // 45 ms for 222,528 triangles.
-  const std::size_t n = triangles.size();
-  auto              endsOf = [this](std::uint32_t h) {
-    const std::uint32_t u = triangles[h / 3][h % 3];
-    const std::uint32_t v = triangles[h / 3][(h % 3 + 1) % 3];
-    return std::make_pair(std::min(u, v), std::max(u, v));
-  };
+  const std::size_t               n = triangles.size();
+  auto                            endsOf = [this](std::uint32_t h) { return EdgeEnds(triangles, h); };
   LargeBlockVector<std::uint32_t> start(numberOfPoints + 1, 0);
   for (const auto & t : triangles)
   {
@@ -121,6 +126,62 @@ SurfaceNetTriangles::BuildConnectivity(std::size_t numberOfPoints)
     {
       ++valence[v]; // on a closed surface: edges at v = triangles at v
     }
+  }
+}
+
+void
+SurfaceNetTriangles::ReplaceTriangles(const std::vector<std::pair<std::uint32_t, TriangleIndices>> & replacements)
+{
+  std::vector<std::uint32_t> faces;
+  for (const auto & r : replacements)
+  {
+    faces.push_back(r.first);
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  auto replaced = [&faces](std::uint32_t f) { return std::binary_search(faces.begin(), faces.end(), f); };
+  // The half-edges to pair anew: the faces' own, and the reverse of each of their
+  // edges on the border of the part they cover (in faces that stay), which the same
+  // part has either way.
+  std::vector<std::uint32_t> halfEdges;
+  for (std::uint32_t f : faces)
+  {
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      halfEdges.push_back(3 * f + k);
+      if (!replaced(twin[3 * f + k] / 3))
+      {
+        halfEdges.push_back(twin[3 * f + k]);
+      }
+      --valence[triangles[f][k]];
+    }
+  }
+  for (const auto & r : replacements)
+  {
+    triangles[r.first] = r.second;
+  }
+  for (std::uint32_t f : faces)
+  {
+    for (std::uint32_t v : triangles[f])
+    {
+      ++valence[v];
+    }
+  }
+  std::sort(halfEdges.begin(), halfEdges.end(), [this](std::uint32_t x, std::uint32_t y) {
+    const auto ex = EdgeEnds(triangles, x);
+    const auto ey = EdgeEnds(triangles, y);
+    return ex != ey ? ex < ey : x < y;
+  });
+  for (std::size_t i = 0; i < halfEdges.size(); i += 2)
+  {
+    const auto ends = EdgeEnds(triangles, halfEdges[i]);
+    if (i + 1 == halfEdges.size() || EdgeEnds(triangles, halfEdges[i + 1]) != ends ||
+        (i + 2 < halfEdges.size() && EdgeEnds(triangles, halfEdges[i + 2]) == ends))
+    {
+      itkGenericExceptionMacro("SurfaceNets: internal error: the replaced triangles do not close up with the rest.");
+    }
+    twin[halfEdges[i]] = halfEdges[i + 1];
+    twin[halfEdges[i + 1]] = halfEdges[i];
   }
 }
 
@@ -324,7 +385,8 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
       break;
     }
     changed.clear();
-    std::vector<EdgeSwapRecord> kept;
+    std::vector<EdgeSwapRecord>                            kept;
+    std::vector<std::pair<std::uint32_t, TriangleIndices>> restored;
     for (const auto & s : swaps)
     {
       if (bad[s.first] || bad[s.second])
@@ -344,8 +406,8 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
             }
           }
         }
-        mesh.triangles[s.first] = s.oldFirst;
-        mesh.triangles[s.second] = s.oldSecond;
+        restored.emplace_back(s.first, s.oldFirst);
+        restored.emplace_back(s.second, s.oldSecond);
         changed.push_back(s.first);
         changed.push_back(s.second);
         ++undone;
@@ -362,7 +424,7 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
       break;
     }
     swaps.swap(kept);
-    mesh.BuildConnectivity(physical.size());
+    mesh.ReplaceTriangles(restored);
   }
   if (refused != nullptr)
   {

@@ -606,6 +606,64 @@ TEST(SurfaceNetTriangles, BuildConnectivityPairsEveryHalfEdgeWithItsReverse)
   EXPECT_THROW(mesh.BuildConnectivity(sphere.points.size() - 1), itk::ExceptionObject); // a node out of range
 }
 
+TEST(SurfaceNetTriangles, ReplaceTrianglesGivesTheConnectivityOfABuildFromScratch)
+{
+  // Swap edges of a perturbed sphere (to the shorter diagonal), then undo every other
+  // swap, and then all of them, locally: twins and valences must be those that
+  // BuildConnectivity gives the same triangles.
+  IndexedTriangleMesh              sphere = MakeIcosphere(3, 1.0);
+  std::mt19937                     rng(5);
+  std::normal_distribution<double> jitter(0.0, 0.04);
+  for (auto & p : sphere.points)
+  {
+    p += MakeVec3(jitter(rng), jitter(rng), jitter(rng));
+  }
+  SurfaceNetTriangles mesh;
+  mesh.triangles = sphere.triangles;
+  mesh.BuildConnectivity(sphere.points.size());
+  EdgeSwapParameters shortest;
+  shortest.criterion = itk::MeshExtractionEnums::EdgeSwapCriterion::ShortestEdge;
+  const auto swaps = SwapEdges(sphere.points, mesh, shortest);
+  ASSERT_GT(swaps.size(), 20u);
+  std::vector<std::pair<std::uint32_t, itk::MeshExtraction::TriangleIndices>> undo;
+  for (std::size_t i = 0; i < swaps.size(); i += 2)
+  {
+    undo.emplace_back(swaps[i].first, swaps[i].oldFirst);
+    undo.emplace_back(swaps[i].second, swaps[i].oldSecond);
+  }
+  SurfaceNetTriangles local = mesh;
+  local.ReplaceTriangles(undo);
+  SurfaceNetTriangles scratch = local;
+  scratch.BuildConnectivity(sphere.points.size());
+  EXPECT_EQ(local.triangles, scratch.triangles);
+  EXPECT_EQ(local.twin, scratch.twin);
+  EXPECT_EQ(local.valence, scratch.valence);
+  EXPECT_NE(local.triangles, mesh.triangles);
+  // Undoing every swap (neighbouring quads among them) gives back the sphere's own.
+  SurfaceNetTriangles                                                         back = mesh;
+  std::vector<std::pair<std::uint32_t, itk::MeshExtraction::TriangleIndices>> all;
+  for (const auto & s : swaps)
+  {
+    all.emplace_back(s.first, s.oldFirst);
+    all.emplace_back(s.second, s.oldSecond);
+  }
+  back.ReplaceTriangles(all);
+  SurfaceNetTriangles original;
+  original.triangles = sphere.triangles;
+  original.BuildConnectivity(sphere.points.size());
+  EXPECT_EQ(back.triangles, original.triangles);
+  EXPECT_EQ(back.twin, original.twin);
+  EXPECT_EQ(back.valence, original.valence);
+
+  // Corners that do not cover the same part (those of a face elsewhere): the rest no
+  // longer closes up.
+  const std::uint32_t                                                               face = undo[0].first;
+  const std::vector<std::pair<std::uint32_t, itk::MeshExtraction::TriangleIndices>> wrong{
+    { face, local.triangles[(face + local.triangles.size() / 2) % local.triangles.size()] }
+  };
+  EXPECT_THROW(local.ReplaceTriangles(wrong), itk::ExceptionObject);
+}
+
 TEST(ParallelForBlocks, ScopedNumberOfWorkUnitsBoundsTheThreadsAndIsRestored)
 {
   // A filter's SetNumberOfWorkUnits(1) must reach the free functions it calls.
