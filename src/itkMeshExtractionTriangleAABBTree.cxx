@@ -92,25 +92,34 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
   {
     return;
   }
-  AxisAlignedBoxArray    boxes(n);
-  LargeBlockVector<Vec3> centroids(n);
-  for (std::size_t i = 0; i < n; ++i)
+  // The slots' boxes, in their final (sorted) order at the end; until then, read
+  // where they are (no copy: each is 48 bytes, a few hundred thousand of them).
+  AxisAlignedBoxArray computedBoxes(givenBoxes ? 0 : n);
+  for (std::size_t i = 0; i < computedBoxes.size(); ++i)
   {
-    boxes[i] = givenBoxes ? (*givenBoxes)[m_Triangles[i]] : TriangleBox(mesh, m_Triangles[i]);
+    computedBoxes[i] = TriangleBox(mesh, m_Triangles[i]);
+  }
+  auto boxOf = [&](std::size_t i) -> const AxisAlignedBox & {
+    return givenBoxes ? (*givenBoxes)[m_Triangles[i]] : computedBoxes[i];
+  };
+  auto centreOf = [&](std::size_t i) {
+    const AxisAlignedBox & box = boxOf(i);
+    Vec3                   c;
     for (unsigned int d = 0; d < 3; ++d)
     {
-      centroids[i][d] = 0.5 * (boxes[i].lower[d] + boxes[i].upper[d]);
+      c[d] = 0.5 * (box.lower[d] + box.upper[d]);
     }
-  }
+    return c;
+  };
   // Order the slots along a Morton (Z-order) curve of the box centres, then split
   // every range where the highest differing bit of its codes changes (Karras' linear
   // BVH): each half is one octree cell, so boxes stay tight (splitting in the middle
   // of the range instead lets a node span two distant cells, and made nearest-point
   // queries three times slower). The 63-bit keys are radix sorted (SortKeys).
   AxisAlignedBox centreBounds;
-  for (const auto & c : centroids)
+  for (std::size_t i = 0; i < n; ++i)
   {
-    centreBounds.Add(c);
+    centreBounds.Add(centreOf(i));
   }
   auto spread = [](std::uint64_t x) {
     x &= 0x1fffff;
@@ -124,22 +133,18 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
   LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
   for (std::size_t i = 0; i < n; ++i)
   {
+    const Vec3    centre = centreOf(i);
     std::uint64_t code = 0;
     for (unsigned int d = 0; d < 3; ++d)
     {
       const double extent = centreBounds.upper[d] - centreBounds.lower[d];
-      const double t = extent > 0.0 ? (centroids[i][d] - centreBounds.lower[d]) / extent : 0.0;
+      const double t = extent > 0.0 ? (centre[d] - centreBounds.lower[d]) / extent : 0.0;
       const auto   q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0);
       code |= spread(q) << d;
     }
     keys[i] = { code, static_cast<std::uint32_t>(i) };
   }
   SortKeys(keys);
-  LargeBlockVector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    order[i] = keys[i].second;
-  }
 
   constexpr std::uint32_t LeafSize = 16;
   struct Task
@@ -197,8 +202,8 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
   AxisAlignedBoxArray             sortedBoxes(n);
   for (std::size_t i = 0; i < n; ++i)
   {
-    triangles[i] = m_Triangles[order[i]];
-    sortedBoxes[i] = boxes[order[i]];
+    triangles[i] = m_Triangles[keys[i].second];
+    sortedBoxes[i] = boxOf(keys[i].second);
   }
   m_Triangles.swap(triangles);
   m_Boxes.swap(sortedBoxes);
