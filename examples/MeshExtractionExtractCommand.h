@@ -234,11 +234,7 @@ RunExtract(const Arguments & args)
     throw UsageError("--rounds must be >= 0");
   }
   s.rounds = static_cast<unsigned int>(rounds);
-  s.convergedSwaps = args.GetDouble("converged-swaps", 0.001);
-  if (!(s.convergedSwaps >= 0.0 && s.convergedSwaps <= 1.0))
-  {
-    throw UsageError("--converged-swaps must be in [0, 1]");
-  }
+  s.convergedSwaps = args.GetDouble("converged-swaps", 0.001); // the filter checks the range
   const long threads = args.GetInteger("threads", 0);
   if (threads < 0)
   {
