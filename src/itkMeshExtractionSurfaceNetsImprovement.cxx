@@ -353,7 +353,6 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
   BuildOrRefit(tree, check, boxes);
   while (!changed.empty())
   {
-    check.triangles = mesh.triangles;
     const auto        pairs = FindSelfIntersections(check, changed, tree);
     std::vector<bool> bad(mesh.triangles.size(), false);
     bool              anyBad = !pairs.empty();
@@ -425,6 +424,10 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
     }
     swaps.swap(kept);
     mesh.ReplaceTriangles(restored);
+    for (const auto & r : restored)
+    {
+      check.triangles[r.first] = r.second; // the rest is as before
+    }
   }
   if (refused != nullptr)
   {
