@@ -20,7 +20,10 @@ For every size and thread count (1 and all):
   SNERT / (FlyingEdges3D + windowed sinc)       issue 5 target: <= 2
   HQ / vtkFlyingEdges3D                          issue 6 target: <= 10
   HQ / SNERT, HQ / (FlyingEdges3D + windowed sinc)
-Times are wall-clock (the extraction benchmarks time each run by hand: UseManualTime). Python standard library only.
+Times are wall-clock (the extraction benchmarks time each run by hand: UseManualTime).
+A second table gives each method's minor page faults per run (the benchmark's counter
+`faults`): fresh memory from the system, whose cost on a VM can outweigh the computing
+and which depends on what the process freed before. Python standard library only.
 """
 
 import argparse
@@ -78,10 +81,12 @@ def run_benchmarks(binary, large, repetitions, extra, one_process=False):
     return merged
 
 
-def collect(results):
-    """{(size, threads): {label: milliseconds}} from Google Benchmark's JSON."""
+def collect(results, counter=None):
+    """{(size, threads): {label: milliseconds}} from Google Benchmark's JSON (with
+    counter: that counter's value in the fastest repetition instead)."""
     label_of = dict(COLUMNS)
     times = {}
+    best = {}
     for entry in results.get("benchmarks", []):
         if entry.get("run_type") == "aggregate" and entry.get("aggregate_name") != "median":
             continue
@@ -94,11 +99,17 @@ def collect(results):
         label = label_of[match.group("method")]
         ms = entry["real_time"] * UNIT[entry.get("time_unit", "ns")]
         cell = times.setdefault(key, {})
-        cell[label] = min(ms, cell.get(label, ms))  # repetitions: the best one
+        if label in cell and best[(key, label)] <= ms:
+            continue  # repetitions: the best one
+        best[(key, label)] = ms
+        if counter is None:
+            cell[label] = ms
+        elif counter in entry:
+            cell[label] = entry[counter]
     return times
 
 
-def print_tables(times, context):
+def print_tables(times, context, faults=None):
     if context:
         print("machine: {} x {} MHz, load average {}; date {}".format(
             context.get("num_cpus"), context.get("mhz_per_cpu"),
@@ -110,6 +121,14 @@ def print_tables(times, context):
         row = times[(size, threads)]
         print("{:>5}^3 {:>7} ".format(size, threads) +
               " ".join("{:>9}".format("{:.1f}".format(row[l]) if l in row else "-") for l in labels))
+
+    if faults:
+        print("\nminor page faults per extraction (fresh pages, 4 KiB or huge; the fastest repetition's mean)")
+        print("{:>6} {:>7} ".format("size", "threads") + " ".join("{:>9}".format(l) for l in labels))
+        for (size, threads) in sorted(faults):
+            row = faults[(size, threads)]
+            print("{:>5}^3 {:>7} ".format(size, threads) +
+                  " ".join("{:>9}".format("{:.0f}".format(row[l]) if l in row else "-") for l in labels))
 
     print("\nratios (SurfaceNets time / peer time; lower is faster)")
     print("{:>6} {:>7} ".format("size", "threads") +
@@ -201,7 +220,7 @@ def main():
             if not times:
                 sys.exit("no SurfaceNets/VTK extraction results found")
             print("round {}: {}".format(r + 1, args.binary))
-            print_tables(times, results.get("context", {}))
+            print_tables(times, results.get("context", {}), collect(results, "faults"))
             rounds.append(times)
             if old is not None:
                 pairs.append((old, times))
@@ -222,7 +241,7 @@ def main():
     times = collect(results)
     if not times:
         sys.exit("no SurfaceNets/VTK extraction results found")
-    print_tables(times, results.get("context", {}))
+    print_tables(times, results.get("context", {}), collect(results, "faults"))
 
 
 if __name__ == "__main__":
