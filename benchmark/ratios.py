@@ -109,26 +109,26 @@ def collect(results, counter=None):
     return times
 
 
+def print_method_table(title, values, number_format):
+    """One row per (size, threads), one column per method."""
+    labels = [label for _, label in COLUMNS]
+    print("\n" + title)
+    print("{:>6} {:>7} ".format("size", "threads") + " ".join("{:>9}".format(l) for l in labels))
+    for (size, threads) in sorted(values):
+        row = values[(size, threads)]
+        print("{:>5}^3 {:>7} ".format(size, threads) +
+              " ".join("{:>9}".format(number_format.format(row[l]) if l in row else "-") for l in labels))
+
+
 def print_tables(times, context, faults=None):
     if context:
         print("machine: {} x {} MHz, load average {}; date {}".format(
             context.get("num_cpus"), context.get("mhz_per_cpu"),
             ", ".join("{:.2f}".format(x) for x in context.get("load_avg", [])), context.get("date")))
-    labels = [label for _, label in COLUMNS]
-    print("\nwall time per extraction (ms), sphere distance map, float, 1 mm voxels")
-    print("{:>6} {:>7} ".format("size", "threads") + " ".join("{:>9}".format(l) for l in labels))
-    for (size, threads) in sorted(times):
-        row = times[(size, threads)]
-        print("{:>5}^3 {:>7} ".format(size, threads) +
-              " ".join("{:>9}".format("{:.1f}".format(row[l]) if l in row else "-") for l in labels))
-
+    print_method_table("wall time per extraction (ms), sphere distance map, float, 1 mm voxels", times, "{:.1f}")
     if faults:
-        print("\nminor page faults per extraction (fresh pages, 4 KiB or huge; the fastest repetition's mean)")
-        print("{:>6} {:>7} ".format("size", "threads") + " ".join("{:>9}".format(l) for l in labels))
-        for (size, threads) in sorted(faults):
-            row = faults[(size, threads)]
-            print("{:>5}^3 {:>7} ".format(size, threads) +
-                  " ".join("{:>9}".format("{:.0f}".format(row[l]) if l in row else "-") for l in labels))
+        print_method_table("minor page faults per extraction (fresh pages, 4 KiB or huge; the fastest repetition's mean)",
+                           faults, "{:.0f}")
 
     print("\nratios (SurfaceNets time / peer time; lower is faster)")
     print("{:>6} {:>7} ".format("size", "threads") +
