@@ -499,27 +499,20 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
       output->SetCells(container);
       auto & vector = container->CastToSTLContainer();
       vector.assign(polygons.size(), nullptr);
-      try
-      {
-        if (polygonSize == 3)
-        {
-          BlockAllocatedCell<TriangleCell<CellType>>::MakeCells(polygons.size(), vector.begin());
-        }
-        else
-        {
-          BlockAllocatedCell<QuadrilateralCell<CellType>>::MakeCells(polygons.size(), vector.begin());
-        }
-      }
-      catch (const std::bad_alloc &)
-      {
-        itkExceptionMacro("Out of memory while making the " << polygons.size() << " cells of the output mesh.");
-      }
-      // The ids through the cell type's own SetPointId, without a virtual call per id
-      // (the cells were made above as that type). In a second pass rather than as each
-      // cell is made: that changes the order of the heap's allocations, and made the
-      // filter twice as slow in later runs of a process (see README, Speed).
-      auto setPointIds = [&](auto * cellType) { // cellType: a null pointer to the cell type
+      // Then the ids, through the cell type's own SetPointId (no virtual call per id).
+      // In a second pass rather than as each cell is made: that changes the order of
+      // the heap's allocations, and made the filter twice as slow in later runs of a
+      // process (see README, Speed).
+      auto makeCells = [&](auto * cellType) { // cellType: a null pointer to the cell type
         using Cell = std::remove_pointer_t<decltype(cellType)>;
+        try
+        {
+          BlockAllocatedCell<Cell>::MakeCells(polygons.size(), vector.begin());
+        }
+        catch (const std::bad_alloc &)
+        {
+          itkExceptionMacro("Out of memory while making the " << polygons.size() << " cells of the output mesh.");
+        }
         MeshExtraction::ParallelForBlocks(polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
           for (std::size_t f = begin; f < end; ++f)
           {
@@ -533,11 +526,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
       };
       if (polygonSize == 3)
       {
-        setPointIds(static_cast<TriangleCell<CellType> *>(nullptr));
+        makeCells(static_cast<TriangleCell<CellType> *>(nullptr));
       }
       else
       {
-        setPointIds(static_cast<QuadrilateralCell<CellType> *>(nullptr));
+        makeCells(static_cast<QuadrilateralCell<CellType> *>(nullptr));
       }
     }
     else
