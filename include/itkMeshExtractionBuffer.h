@@ -21,6 +21,7 @@
 #include "MeshExtractionExport.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <type_traits>
 #include <vector>
@@ -43,6 +44,26 @@ AllocateLargeBlock(std::size_t bytes);
 /** Releases a block of AllocateLargeBlock(bytes), given the same `bytes`. */
 MeshExtraction_EXPORT void
 ReleaseLargeBlock(void * block, std::size_t bytes) noexcept;
+
+/** Asks the processor to bring the cache lines that hold [address, address + bytes)
+ * toward its caches: prefetch instructions, which change no result and fault at no
+ * address (integer arithmetic, so the range may run past an array's end). For
+ * memory read soon in a pattern the hardware's own prefetching does not foresee or
+ * foresees too late. */
+inline void
+PrefetchForReading(std::uintptr_t address, std::size_t bytes)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  constexpr std::uintptr_t Line = 64;
+  for (std::uintptr_t line = address & ~(Line - 1); line < address + bytes; line += Line)
+  {
+    __builtin_prefetch(reinterpret_cast<const void *>(line), 0, 3);
+  }
+#else
+  (void)address;
+  (void)bytes;
+#endif
+}
 
 /** \brief A fixed-size array of trivial elements that are not zero-filled: for
  * the large per-node and per-face work arrays whose every element is written

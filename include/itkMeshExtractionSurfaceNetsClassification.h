@@ -174,23 +174,6 @@ CountTrailingZeros(unsigned int mask)
  * types, which the compiler vectorises, get that whole-row prefetch. */
 constexpr std::size_t SurfaceNetsPrefetchDistance = 4096;
 
-/** Asks the processor to bring the cache lines of [address, address + bytes) toward
- * its caches (prefetch instructions: no effect on results, no fault at any address;
- * integer arithmetic, so the range may run past the image's end). */
-inline void
-PrefetchForReading(std::uintptr_t address, std::size_t bytes)
-{
-#if defined(__GNUC__) || defined(__clang__)
-  for (std::size_t offset = 0; offset < bytes; offset += 64)
-  {
-    __builtin_prefetch(reinterpret_cast<const void *>(address + offset), 0, 3);
-  }
-#else
-  (void)address;
-  (void)bytes;
-#endif
-}
-
 /** One voxel row of the classification: flags[x] = inside(row[x]) (NaN never
  * inside), the number of inside voxels (added to `insideCount`), the row's
  * extremes ignoring NaN (unchanged when every voxel is NaN), and whether it holds
@@ -232,7 +215,7 @@ ClassifySurfaceNetsRow(const TPixel * row,
       __m128i              count = _mm_setzero_si128();
       for (; i + 16 <= n; i += 16)
       {
-        PrefetchForReading(reinterpret_cast<std::uintptr_t>(r + i) + SurfaceNetsPrefetchDistance, 64);
+        PrefetchForReading(reinterpret_cast<std::uintptr_t>(r + i) + SurfaceNetsPrefetchDistance, 1);
         const __m128  v0 = _mm_loadu_ps(r + i);
         const __m128  v1 = _mm_loadu_ps(r + i + 4);
         const __m128  v2 = _mm_loadu_ps(r + i + 8);

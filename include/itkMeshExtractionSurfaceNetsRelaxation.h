@@ -509,15 +509,38 @@ RelaxSurfaceNet(SurfaceNet &                            net,
         const std::int64_t * size = sampler->GetSize();
         const std::int64_t   sy = size[0];
         const std::int64_t   sz = size[0] * size[1];
+        // The 4x4x4 voxels around a cell (its corners and their central-difference
+        // neighbours) are read straight from the buffer when all are inside the image.
+        auto isInterior = [size](const SurfaceCell & c) {
+          return c.x >= 1 && c.y >= 1 && c.z >= 1 && c.x + 2 < size[0] && c.y + 2 < size[1] && c.z + 2 < size[2];
+        };
+        // Those of the cell PrefetchAhead nodes on are requested now: the nodes come
+        // in cell order, in a pattern of 16 short rows that the hardware's own
+        // prefetching does not foresee. SNERT at 256^3 (SurfaceNets/SNERT, three
+        // alternating processes) took 95-101 ms on 1 thread and 57-58 on 2 without
+        // this, 90-93 and 53-56.5 with it.
+        constexpr std::size_t PrefetchAhead = 16;
         for (std::size_t i = begin; i < end; ++i)
         {
+          if (i + PrefetchAhead < end)
+          {
+            const SurfaceCell & ahead = net.cells[net.nodeCell[i + PrefetchAhead]];
+            if (isInterior(ahead))
+            {
+              const auto * b = sampler->GetBufferPointer() + (ahead.z * sz + ahead.y * sy + ahead.x);
+              for (std::int64_t dz = -1; dz <= 2; ++dz)
+              {
+                for (std::int64_t dy = -1; dy <= 2; ++dy)
+                {
+                  PrefetchForReading(reinterpret_cast<std::uintptr_t>(b + dz * sz + dy * sy - 1), 4 * sizeof(*b));
+                }
+              }
+            }
+          }
           const SurfaceCell & c = net.cells[net.nodeCell[i]];
-          // The 4x4x4 voxels around the cell (its corners and their central-difference
-          // neighbours), read straight from the buffer when all are inside the image.
-          const bool interior =
-            c.x >= 1 && c.y >= 1 && c.z >= 1 && c.x + 2 < size[0] && c.y + 2 < size[1] && c.z + 2 < size[2];
-          double corner[8];
-          double cornerGradient[3][8] = {};
+          const bool          interior = isInterior(c);
+          double              corner[8];
+          double              cornerGradient[3][8] = {};
           // The corners and central differences inside the image, straight from the buffer.
           auto readInterior = [&](const auto * b) {
             for (unsigned int k = 0; k < 8; ++k)
