@@ -502,7 +502,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
       // Then the ids, through the cell type's own SetPointId (no virtual call per id).
       // In a second pass rather than as each cell is made: that changes the order of
       // the heap's allocations, and made the filter twice as slow in later runs of a
-      // process (see README, Speed).
+      // process (see benchmark/README.md).
       auto makeCells = [&](auto * cellType) { // cellType: a null pointer to the cell type
         using Cell = std::remove_pointer_t<decltype(cellType)>;
         try
