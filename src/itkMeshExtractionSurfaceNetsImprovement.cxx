@@ -455,16 +455,30 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   ToPhysical(start.data(), start.size(), origin, M, roundToFloat, startPhysical.data());
   // The per-triangle loops below are independent per triangle: they run on the work
   // units (the results do not depend on their number).
-  constexpr std::size_t  BlockSize = 8192;
-  LargeBlockVector<Vec3> startNormals(numberOfTriangles);
+  constexpr std::size_t BlockSize = 8192;
+  // Each face's normal (not normalised) with its length, at `start` and, below, at the
+  // current positions: every fold test reads two faces' of them instead of computing
+  // both normals and lengths again, once from each side of every edge.
+  struct FaceNormal
+  {
+    Vec3   normal;
+    double length;
+  };
+  auto faceNormal = [&triangles](const auto & points, std::size_t f) {
+    const auto & t = triangles[f];
+    const Vec3   n = TriangleNormal(points[t[0]], points[t[1]], points[t[2]]);
+    return FaceNormal{ n, Norm(n) };
+  };
+  LargeBlockVector<FaceNormal> startNormals(numberOfTriangles);
   ParallelForBlocks(numberOfTriangles, BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t f = begin; f < end; ++f)
     {
-      const auto & t = triangles[f];
-      startNormals[f] = TriangleNormal(startPhysical[t[0]], startPhysical[t[1]], startPhysical[t[2]]);
+      startNormals[f] = faceNormal(startPhysical, f);
     }
   });
-  auto folded = [](const Vec3 & n, const Vec3 & m) { return Dot(n, m) < FoldCosine * Norm(n) * Norm(m); };
+  auto folded = [](const FaceNormal & n, const FaceNormal & m) {
+    return Dot(n.normal, m.normal) < FoldCosine * n.length * m.length;
+  };
   std::vector<std::uint8_t> foldedAtStart(numberOfTriangles, 0);
   IndexedTriangleMesh       check;
   check.triangles = triangles;
@@ -532,7 +546,8 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   {
     changedVertex[v] = positions[v] != start[v]; // `start` is valid: only moved nodes matter
   }
-  std::vector<std::uint32_t> candidateList; // kept from round to round
+  std::vector<std::uint32_t>   candidateList;              // kept from round to round
+  LargeBlockVector<FaceNormal> normals(numberOfTriangles); // at check.points
   for (unsigned int round = 0; round < 64; ++round)
   {
     if (round > 0)
@@ -549,6 +564,25 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
         candidates.push_back(f);
       }
     }
+    // The normals of the candidates (the other faces kept their vertices' positions):
+    // of every face in the first round.
+    auto computeNormals = [&](std::size_t count, auto face) {
+      ParallelForBlocks(count, BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          const std::size_t f = face(i);
+          normals[f] = faceNormal(check.points, f);
+        }
+      });
+    };
+    if (round == 0)
+    {
+      computeNormals(numberOfTriangles, [](std::size_t i) { return i; });
+    }
+    else
+    {
+      computeNormals(candidates.size(), [&candidates](std::size_t i) { return candidates[i]; });
+    }
     // Flipped, degenerate or newly folded candidates, per block (the nodes are sorted
     // and made unique below, so the blocks' order does not matter).
     std::vector<std::vector<std::uint32_t>> badPerBlock((candidates.size() + BlockSize - 1) / BlockSize);
@@ -561,8 +595,7 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
         const Vec3 &        a = check.points[t[0]];
         const Vec3 &        b = check.points[t[1]];
         const Vec3 &        c = check.points[t[2]];
-        const Vec3          n = TriangleNormal(a, b, c);
-        if (!(Dot(n, startNormals[f]) > 0.0) || !(TriangleQArea(a, b, c) > tolerance))
+        if (!(Dot(normals[f].normal, startNormals[f].normal) > 0.0) || !(TriangleQArea(a, b, c) > tolerance))
         {
           bad.insert(bad.end(), t.begin(), t.end());
           continue;
@@ -573,9 +606,10 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
           {
             continue;
           }
-          const auto & u = triangles[mesh.twin[3 * f + k] / 3];
-          if (folded(n, TriangleNormal(check.points[u[0]], check.points[u[1]], check.points[u[2]])))
+          const std::uint32_t g = mesh.twin[3 * f + k] / 3;
+          if (folded(normals[f], normals[g]))
           {
+            const auto & u = triangles[g];
             bad.insert(bad.end(), t.begin(), t.end());
             bad.insert(bad.end(), u.begin(), u.end());
           }
