@@ -24,6 +24,7 @@
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include <fstream>
+#include <sstream>
 
 namespace MeshExtractionCLI
 {
@@ -34,24 +35,54 @@ using SurfaceNetsEnums = itk::SurfaceNetsImageToMeshFilterEnums;
 // The tool only writes the mesh: itk::Mesh is faster to fill than QuadEdgeMesh.
 using ExtractMeshType = itk::Mesh<double, 3>;
 
-/** The parts of the extract options that do not depend on the pixel type. */
+/** The parts of the extract options that do not depend on the pixel type. The
+ * filter's own settings start as the filter's defaults (ExtractDefaults), so that the
+ * options and their help text cannot drift from the filter. */
 struct ExtractSettings
 {
   double                          isoValue{ 0.0 };
   bool                            insideAbove{ true };
   bool                            byLabel{ false };
-  double                          label{ 1.0 };
+  double                          label{ 0.0 };
   std::string                     labelImage;
   SurfaceNetsEnums::Relaxation    relaxation{ SurfaceNetsEnums::Relaxation::Automatic };
-  unsigned int                    iterations{ 10 };
+  unsigned int                    iterations{ 0 };
   SurfaceNetsEnums::Triangulation triangulation{ SurfaceNetsEnums::Triangulation::ShortestDiagonal };
   SurfaceNetsEnums::Gradient      gradient{ SurfaceNetsEnums::Gradient::CentralDifference };
-  double                          sigma{ 1.0 };
+  double                          sigma{ 0.0 };
   unsigned int                    threads{ 0 };
   bool                            highQuality{ false };
-  unsigned int                    rounds{ 8 };
-  double                          convergedSwaps{ 0.001 };
+  unsigned int                    rounds{ 0 };
+  double                          convergedSwaps{ 0.0 };
 };
+
+/** The settings of a default-constructed SurfaceNetsImageToMeshFilter (the pixel type
+ * does not change them). */
+inline ExtractSettings
+ExtractDefaults()
+{
+  const auto      filter = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>, ExtractMeshType>::New();
+  ExtractSettings s;
+  s.isoValue = filter->GetIsoValue();
+  s.insideAbove = filter->GetInsideIsAboveIsoValue();
+  s.label = filter->GetLabelValue();
+  s.iterations = filter->GetMaximumNumberOfIterations();
+  s.sigma = filter->GetGradientSigma();
+  s.highQuality = filter->GetHighQuality();
+  s.rounds = filter->GetNumberOfImprovementRounds();
+  s.convergedSwaps = filter->GetConvergedSwapFraction();
+  return s;
+}
+
+/** A default value as the help text prints it (shortest form: 10, 0.001). */
+template <typename T>
+std::string
+DefaultText(T value)
+{
+  std::ostringstream os;
+  os << value;
+  return os.str();
+}
 
 inline SurfaceNetsEnums::Relaxation
 RelaxationFromName(const std::string & name)
@@ -168,7 +199,7 @@ ExtractFromFile(const std::string & path, const ExtractSettings & s)
 inline int
 RunExtract(const Arguments & args)
 {
-  ExtractSettings s;
+  ExtractSettings s = ExtractDefaults();
   const bool      fromPhantom = args.Has("phantom");
   if (fromPhantom == (args.positional.size() == 2))
   {
@@ -176,7 +207,7 @@ RunExtract(const Arguments & args)
   }
   const std::string output = args.positional.back();
   s.byLabel = args.Has("label");
-  s.label = args.GetDouble("label", 1.0);
+  s.label = args.GetDouble("label", s.label);
   s.labelImage = args.Get("labels");
   if (!fromPhantom && !args.Has("iso") && !s.byLabel)
   {
@@ -186,7 +217,7 @@ RunExtract(const Arguments & args)
   {
     throw UsageError("--labels relaxes a segmentation toward the iso-surface of INPUT: give --iso too");
   }
-  s.isoValue = args.GetDouble("iso", 0.0);
+  s.isoValue = args.GetDouble("iso", s.isoValue);
   const std::string inside = args.Get("inside", "above");
   if (inside != "above" && inside != "below")
   {
@@ -194,7 +225,7 @@ RunExtract(const Arguments & args)
   }
   s.insideAbove = inside == "above";
   s.relaxation = RelaxationFromName(args.Get("relaxation", "auto"));
-  const long iterations = args.GetInteger("iterations", 10);
+  const long iterations = args.GetInteger("iterations", static_cast<long>(s.iterations));
   if (iterations < 0)
   {
     throw UsageError("--iterations must be >= 0");
@@ -220,7 +251,7 @@ RunExtract(const Arguments & args)
   if (args.Has("sigma"))
   {
     s.gradient = SurfaceNetsEnums::Gradient::GaussianDerivative;
-    s.sigma = args.GetDouble("sigma", 1.0);
+    s.sigma = args.GetDouble("sigma", s.sigma);
   }
   const std::string qualityMode = args.Get("quality", "standard");
   if (qualityMode != "standard" && qualityMode != "high")
@@ -228,13 +259,13 @@ RunExtract(const Arguments & args)
     throw UsageError("--quality must be standard or high, got '" + qualityMode + "'");
   }
   s.highQuality = qualityMode == "high";
-  const long rounds = args.GetInteger("rounds", 8);
+  const long rounds = args.GetInteger("rounds", static_cast<long>(s.rounds));
   if (rounds < 0)
   {
     throw UsageError("--rounds must be >= 0");
   }
   s.rounds = static_cast<unsigned int>(rounds);
-  s.convergedSwaps = args.GetDouble("converged-swaps", 0.001); // the filter checks the range
+  s.convergedSwaps = args.GetDouble("converged-swaps", s.convergedSwaps); // the filter checks the range
   const long threads = args.GetInteger("threads", 0);
   if (threads < 0)
   {
@@ -307,7 +338,8 @@ RunExtract(const Arguments & args)
 inline Command
 MakeExtractCommand()
 {
-  Command c;
+  const ExtractSettings defaults = ExtractDefaults();
+  Command               c;
   c.name = "extract";
   c.summary = "extract a surface mesh with SurfaceNets (SNA, SNERT)";
   c.usage = "INPUT OUTPUT [options]   |   meshextraction extract --phantom NAME OUTPUT [options]";
@@ -321,19 +353,22 @@ MakeExtractCommand()
   c.options = {
     { "iso", "V", "iso-value of the object's boundary", "0 for a phantom" },
     { "inside", "above|below", "which side of --iso is the object", "above" },
-    { "label", "L", "the object is the voxels equal to L (INPUT or --labels is a label image)", "1" },
+    { "label",
+      "L",
+      "the object is the voxels equal to L (INPUT or --labels is a label image)",
+      DefaultText(defaults.label) },
     { "labels", "FILE", "segmentation whose --label voxels give the net, relaxed toward INPUT's iso-surface", "" },
     { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
     { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
-    { "iterations", "N", "maximum relaxation iterations", "10" },
+    { "iterations", "N", "maximum relaxation iterations", DefaultText(defaults.iterations) },
     { "triangulation", "MODE", "shortest, delaunay or quads", "shortest" },
     { "sigma", "MM", "Gaussian-derivative gradients of this scale instead of central differences", "" },
     { "quality", "standard|high", "high: alternate regularity edge swaps with SNERT on the triangles", "standard" },
-    { "rounds", "N", "rounds of swaps and relaxation for --quality high", "8" },
+    { "rounds", "N", "rounds of swaps and relaxation for --quality high", DefaultText(defaults.rounds) },
     { "converged-swaps",
       "F",
       "--quality high stops its rounds when one swaps fewer than this fraction of the triangles (0: none)",
-      "0.001" },
+      DefaultText(defaults.convergedSwaps) },
     { "threads", "N", "work units (0: all cores)", "0" },
     { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
     { "report-json", "FILE", "write the report as JSON", "" },
