@@ -40,20 +40,22 @@ using ExtractMeshType = itk::Mesh<double, 3>;
  * options and their help text cannot drift from the filter. */
 struct ExtractSettings
 {
-  double                          isoValue{ 0.0 };
-  bool                            insideAbove{ true };
-  bool                            byLabel{ false };
-  double                          label{ 0.0 };
-  std::string                     labelImage;
-  SurfaceNetsEnums::Relaxation    relaxation{ SurfaceNetsEnums::Relaxation::Automatic };
-  unsigned int                    iterations{ 0 };
-  SurfaceNetsEnums::Triangulation triangulation{ SurfaceNetsEnums::Triangulation::ShortestDiagonal };
-  SurfaceNetsEnums::Gradient      gradient{ SurfaceNetsEnums::Gradient::CentralDifference };
-  double                          sigma{ 0.0 };
-  unsigned int                    threads{ 0 };
-  bool                            highQuality{ false };
-  unsigned int                    rounds{ 0 };
-  double                          convergedSwaps{ 0.0 };
+  // The tool's own.
+  bool         byLabel{ false };
+  std::string  labelImage;
+  unsigned int threads{ 0 }; // 0: the filter's default number of work units
+  // The filter's (ExtractDefaults sets them).
+  double                          isoValue{};
+  bool                            insideAbove{};
+  double                          label{};
+  SurfaceNetsEnums::Relaxation    relaxation{};
+  unsigned int                    iterations{};
+  SurfaceNetsEnums::Triangulation triangulation{};
+  SurfaceNetsEnums::Gradient      gradient{};
+  double                          sigma{};
+  bool                            highQuality{};
+  unsigned int                    rounds{};
+  double                          convergedSwaps{};
 };
 
 /** The settings of a default-constructed SurfaceNetsImageToMeshFilter (the pixel type
@@ -66,7 +68,10 @@ ExtractDefaults()
   s.isoValue = filter->GetIsoValue();
   s.insideAbove = filter->GetInsideIsAboveIsoValue();
   s.label = filter->GetLabelValue();
+  s.relaxation = filter->GetRelaxation();
   s.iterations = filter->GetMaximumNumberOfIterations();
+  s.triangulation = filter->GetTriangulation();
+  s.gradient = filter->GetGradientMethod();
   s.sigma = filter->GetGradientSigma();
   s.highQuality = filter->GetHighQuality();
   s.rounds = filter->GetNumberOfImprovementRounds();
@@ -218,42 +223,48 @@ RunExtract(const Arguments & args)
     throw UsageError("--labels relaxes a segmentation toward the iso-surface of INPUT: give --iso too");
   }
   s.isoValue = args.GetDouble("iso", s.isoValue);
-  const std::string inside = args.Get("inside", "above");
+  const std::string inside = args.Get("inside", s.insideAbove ? "above" : "below");
   if (inside != "above" && inside != "below")
   {
     throw UsageError("--inside must be above or below, got '" + inside + "'");
   }
   s.insideAbove = inside == "above";
-  s.relaxation = RelaxationFromName(args.Get("relaxation", "auto"));
+  if (args.Has("relaxation"))
+  {
+    s.relaxation = RelaxationFromName(args.Get("relaxation"));
+  }
   const long iterations = args.GetInteger("iterations", static_cast<long>(s.iterations));
   if (iterations < 0)
   {
     throw UsageError("--iterations must be >= 0");
   }
   s.iterations = static_cast<unsigned int>(iterations);
-  const std::string triangulation = args.Get("triangulation", "shortest");
-  if (triangulation == "shortest")
+  if (args.Has("triangulation"))
   {
-    s.triangulation = SurfaceNetsEnums::Triangulation::ShortestDiagonal;
-  }
-  else if (triangulation == "delaunay")
-  {
-    s.triangulation = SurfaceNetsEnums::Triangulation::Delaunay;
-  }
-  else if (triangulation == "quads")
-  {
-    s.triangulation = SurfaceNetsEnums::Triangulation::Quadrilaterals;
-  }
-  else
-  {
-    throw UsageError("--triangulation must be shortest, delaunay or quads, got '" + triangulation + "'");
+    const std::string triangulation = args.Get("triangulation");
+    if (triangulation == "shortest")
+    {
+      s.triangulation = SurfaceNetsEnums::Triangulation::ShortestDiagonal;
+    }
+    else if (triangulation == "delaunay")
+    {
+      s.triangulation = SurfaceNetsEnums::Triangulation::Delaunay;
+    }
+    else if (triangulation == "quads")
+    {
+      s.triangulation = SurfaceNetsEnums::Triangulation::Quadrilaterals;
+    }
+    else
+    {
+      throw UsageError("--triangulation must be shortest, delaunay or quads, got '" + triangulation + "'");
+    }
   }
   if (args.Has("sigma"))
   {
     s.gradient = SurfaceNetsEnums::Gradient::GaussianDerivative;
     s.sigma = args.GetDouble("sigma", s.sigma);
   }
-  const std::string qualityMode = args.Get("quality", "standard");
+  const std::string qualityMode = args.Get("quality", s.highQuality ? "high" : "standard");
   if (qualityMode != "standard" && qualityMode != "high")
   {
     throw UsageError("--quality must be standard or high, got '" + qualityMode + "'");
