@@ -53,6 +53,17 @@ struct OptionSpec
   std::string defaultValue;
 };
 
+/** A default value as an OptionSpec prints it (shortest form: 10, 0.001, -0.53), for
+ * defaults taken from a filter rather than written out again. */
+template <typename T>
+std::string
+DefaultText(T value)
+{
+  std::ostringstream os;
+  os << value;
+  return os.str();
+}
+
 /** Parsed arguments of one subcommand. */
 class Arguments
 {

@@ -24,7 +24,6 @@
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include <fstream>
-#include <sstream>
 
 namespace MeshExtractionCLI
 {
@@ -77,16 +76,6 @@ ExtractDefaults()
   s.rounds = filter->GetNumberOfImprovementRounds();
   s.convergedSwaps = filter->GetConvergedSwapFraction();
   return s;
-}
-
-/** A default value as the help text prints it (shortest form: 10, 0.001). */
-template <typename T>
-std::string
-DefaultText(T value)
-{
-  std::ostringstream os;
-  os << value;
-  return os.str();
 }
 
 inline SurfaceNetsEnums::Relaxation

@@ -260,7 +260,11 @@ RunImprove(const Arguments & args)
 inline Command
 MakeImproveCommand()
 {
-  Command c;
+  // The filters' own defaults, for the help text.
+  const auto swapDefaults = itk::EdgeSwapQuadEdgeMeshFilter<ImproveMeshType>::New();
+  const auto laplacianDefaults = itk::LaplacianSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
+  const auto taubinDefaults = itk::TaubinSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
+  Command    c;
   c.name = "improve";
   c.summary = "improve a mesh: edge swaps, then Laplacian or Taubin smoothing that never inverts triangles";
   c.usage = "INPUT OUTPUT [options]";
@@ -277,15 +281,24 @@ MakeImproveCommand()
     { "constraint", "none|centroid|safe", "laplacian: move restriction (thesis 4.2.2, Fig. 4.8)", "centroid" },
     { "update", "batch|immediate", "when new positions take effect", "batch" },
     { "iterations", "N", "smoothing iterations (taubin: lambda|mu pairs)", "10" },
-    { "relaxation", "F", "laplacian: relaxation factor in (0, 1]", "1" },
-    { "lambda", "L", "taubin: positive step factor in (0, 1]", "0.5" },
-    { "mu", "M", "taubin: negative step factor, < -lambda", "-0.53" },
+    { "relaxation",
+      "F",
+      "laplacian: relaxation factor in (0, 1]",
+      DefaultText(laplacianDefaults->GetRelaxationFactor()) },
+    { "lambda", "L", "taubin: positive step factor in (0, 1]", DefaultText(taubinDefaults->GetLambda()) },
+    { "mu", "M", "taubin: negative step factor, < -lambda", DefaultText(taubinDefaults->GetMu()) },
     { "pass-band", "K", "taubin: pass-band frequency k_PB; mu from 1/lambda + 1/mu = K", "" },
     { "volume-preservation", "", "laplacian: approximate volume preservation (thesis eq. 2.7-2.10)", "" },
     { "swap", "regularity|delaunay|shortest-edge", "swap edges first by this criterion", "no swaps" },
     { "swap-iterations", "N", "largest number of passes over the edges", "20" },
-    { "feature-angle", "DEG", "no swap across or creating a crease sharper than this", "60" },
-    { "swap-quality", "RATIO", "a swap keeps its worst triangle's q_area >= RATIO x the old worst", "0" },
+    { "feature-angle",
+      "DEG",
+      "no swap across or creating a crease sharper than this",
+      DefaultText(swapDefaults->GetFeatureAngle()) },
+    { "swap-quality",
+      "RATIO",
+      "a swap keeps its worst triangle's q_area >= RATIO x the old worst",
+      DefaultText(swapDefaults->GetMinimumQAreaRatio()) },
     { "report", "", "print the quality before and after", "" },
   };
   c.minimumPositional = 2;
