@@ -17,6 +17,7 @@
  *=========================================================================*/
 #include "itkSurfaceNetsImageToMeshFilter.h"
 #include "itkBinaryMask3DMeshSource.h"
+#include "itkDefaultDynamicMeshTraits.h"
 #include "itkImageRegionIteratorWithIndex.h"
 #include "itkMeshExtractionCellBlock.h"
 #include "itkMeshExtractionPhantoms.h"
@@ -931,6 +932,41 @@ TEST(SurfaceNetsImageToMeshFilter, MeshOutputTriangulationsAndQuadsAgree)
   qe->SetTriangulation(Enums::Triangulation::Quadrilaterals);
   qe->Update();
   EXPECT_EQ(qe->GetOutput()->GetNumberOfFaces(), shortest.numberOfTriangles / 2);
+}
+
+TEST(SurfaceNetsImageToMeshFilter, DynamicMeshTraitsGetTheSameCells)
+{
+  // A mesh whose cells container is not a VectorContainer (map-based dynamic traits)
+  // takes the filter's other output branch: one heap cell per face through SetCell.
+  using DynamicMesh = itk::Mesh<double, 3, itk::DefaultDynamicMeshTraits<double, 3, 3>>;
+  const Phantom p = MakePhantom(ME::PhantomShape::Ellipsoid);
+  auto          vectorFilter = itk::SurfaceNetsImageToMeshFilter<FloatImage, MeshType>::New();
+  auto          mapFilter = itk::SurfaceNetsImageToMeshFilter<FloatImage, DynamicMesh>::New();
+  vectorFilter->SetInput(p.image);
+  mapFilter->SetInput(p.image);
+  vectorFilter->SetInsideIsAboveIsoValue(false);
+  mapFilter->SetInsideIsAboveIsoValue(false);
+  vectorFilter->Update();
+  mapFilter->Update();
+  const MeshType *    a = vectorFilter->GetOutput();
+  const DynamicMesh * b = mapFilter->GetOutput();
+  ASSERT_GT(a->GetNumberOfCells(), 0u);
+  ASSERT_EQ(b->GetNumberOfCells(), a->GetNumberOfCells());
+  ASSERT_EQ(b->GetNumberOfPoints(), a->GetNumberOfPoints());
+  for (MeshType::CellIdentifier c = 0; c < a->GetNumberOfCells(); ++c)
+  {
+    MeshType::CellAutoPointer    u;
+    DynamicMesh::CellAutoPointer v;
+    ASSERT_TRUE(a->GetCell(c, u));
+    ASSERT_TRUE(b->GetCell(c, v));
+    ASSERT_EQ(v->GetType(), itk::CellGeometryEnum::TRIANGLE_CELL);
+    ASSERT_EQ(v->GetNumberOfPoints(), 3u);
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      ASSERT_EQ(v->GetPointIds()[k], u->GetPointIds()[k]) << "cell " << c;
+    }
+  }
+  EXPECT_TRUE(Measure<DynamicMesh>(b).IsValidClosedSurface());
 }
 
 TEST(SurfaceNetsImageToMeshFilter, MeshCellsShareOneBlockThatGoesWithTheLastCell)
