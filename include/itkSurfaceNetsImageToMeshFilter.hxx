@@ -479,15 +479,6 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   {
     using CellType = typename OutputMeshType::CellType;
     using CellsContainer = typename OutputMeshType::CellsContainer;
-    auto makeCell = [&](std::size_t f) {
-      CellType * cell = polygonSize == 3 ? static_cast<CellType *>(new TriangleCell<CellType>)
-                                         : static_cast<CellType *>(new QuadrilateralCell<CellType>);
-      for (unsigned int k = 0; k < polygonSize; ++k)
-      {
-        cell->SetPointId(k, polygons[f][k]);
-      }
-      return cell;
-    };
     if constexpr (std::is_same<CellsContainer,
                                VectorContainer<typename CellsContainer::ElementIdentifier, CellType *>>::value)
     {
@@ -535,10 +526,17 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
     }
     else
     {
+      // Another cells container: one heap cell per face, through SetCell.
       for (std::size_t f = 0; f < polygons.size(); ++f)
       {
+        CellType *                         made = polygonSize == 3 ? static_cast<CellType *>(new TriangleCell<CellType>)
+                                                                   : static_cast<CellType *>(new QuadrilateralCell<CellType>);
         typename CellType::CellAutoPointer cell;
-        cell.TakeOwnership(makeCell(f));
+        cell.TakeOwnership(made);
+        for (unsigned int k = 0; k < polygonSize; ++k)
+        {
+          cell->SetPointId(k, polygons[f][k]);
+        }
         output->SetCell(static_cast<typename OutputMeshType::CellIdentifier>(f), cell);
       }
     }
