@@ -255,25 +255,30 @@ NeitherOppositeAngleIsObtuse(const EdgeSwapQuad & q)
   return Dot(q.a - q.c, q.b - q.c) >= 0.0 && Dot(q.b - q.d, q.a - q.d) >= 0.0;
 }
 
-/** The whole decision: swap when the criterion improves and CheckEdgeSwap() passes.
- * `gain` is left at 0 when the Delaunay criterion is ruled out by
- * NeitherOppositeAngleIsObtuse() (its exact value there is not positive). */
+/** The criterion's half of EvaluateEdgeSwap(): whether swapping the edge of `q`
+ * improves the criterion, with its gain in `gain` (left at 0 when the Delaunay
+ * criterion is ruled out by NeitherOppositeAngleIsObtuse(), where its exact value is
+ * not positive). A caller that must look something up before the checks (whether
+ * (c, d) is already an edge) asks this first and CheckEdgeSwap() after. */
+inline bool
+EdgeSwapImproves(const EdgeSwapQuad & q, const EdgeSwapParameters & p, double & gain)
+{
+  gain = 0.0;
+  if (p.criterion == MeshExtractionEnums::EdgeSwapCriterion::Delaunay && NeitherOppositeAngleIsObtuse(q))
+  {
+    return false;
+  }
+  gain = EdgeSwapGain(p.criterion, q);
+  return IsEdgeSwapImprovement(p.criterion, q, gain);
+}
+
+/** The whole decision: swap when the criterion improves (EdgeSwapImproves()) and
+ * CheckEdgeSwap() passes. */
 inline EdgeSwapDecision
 EvaluateEdgeSwap(const EdgeSwapQuad & q, const EdgeSwapParameters & p)
 {
   EdgeSwapDecision decision;
-  if (p.criterion == MeshExtractionEnums::EdgeSwapCriterion::Delaunay && NeitherOppositeAngleIsObtuse(q))
-  {
-    decision.verdict = EdgeSwapVerdict::NoImprovement;
-    return decision;
-  }
-  decision.gain = EdgeSwapGain(p.criterion, q);
-  if (!IsEdgeSwapImprovement(p.criterion, q, decision.gain))
-  {
-    decision.verdict = EdgeSwapVerdict::NoImprovement;
-    return decision;
-  }
-  decision.verdict = CheckEdgeSwap(q, p);
+  decision.verdict = EdgeSwapImproves(q, p, decision.gain) ? CheckEdgeSwap(q, p) : EdgeSwapVerdict::NoImprovement;
   return decision;
 }
 

@@ -274,8 +274,10 @@ SwapEdges(const std::vector<Vec3> &          physical,
     q.valenceC = mesh.valence[c];
     q.valenceD = mesh.valence[d];
     q.sameApex = c == d;
-    const EdgeSwapDecision gainOnly = EvaluateEdgeSwap(q, parameters);
-    if (gainOnly.verdict == EdgeSwapVerdict::NoImprovement)
+    // The criterion first, then (for the few edges it would swap) the lookups and
+    // the checks.
+    double gain = 0.0;
+    if (!EdgeSwapImproves(q, parameters, gain))
     {
       continue;
     }
@@ -284,7 +286,7 @@ SwapEdges(const std::vector<Vec3> &          physical,
       continue;
     }
     q.oppositeEdgeExists = !q.sameApex && mesh.HasEdge(c, d, 3 * f + (k + 2) % 3);
-    if (!EvaluateEdgeSwap(q, parameters).Swap())
+    if (CheckEdgeSwap(q, parameters) != EdgeSwapVerdict::Swap)
     {
       continue;
     }

@@ -37,6 +37,7 @@
 #include <sstream>
 
 using namespace MeshExtractionTest;
+using itk::MeshExtraction::EdgeSwapDecision;
 using itk::MeshExtraction::EdgeSwapParameters;
 using itk::MeshExtraction::EdgeSwapQuad;
 using itk::MeshExtraction::EdgeSwapVerdict;
@@ -247,8 +248,8 @@ TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayGainAgreesWithTheCircumcircleTestOfFigu
 
 TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayShortcutDecidesAsTheOppositeAngleSum)
 {
-  // EvaluateEdgeSwap skips the arc tangents when neither opposite angle is obtuse; the
-  // verdicts must be those of the exact gain, including right angles (a square, and
+  // EvaluateEdgeSwap (and EdgeSwapImproves) skips the arc tangents when neither opposite
+  // angle is obtuse; the verdicts must be those of the exact gain, including right angles (a square, and
   // apexes on the circle over the edge) and folded quads.
   std::mt19937                           rng(11);
   std::uniform_real_distribution<double> x(-0.5, 1.5);
@@ -286,9 +287,14 @@ TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayShortcutDecidesAsTheOppositeAngleSum)
       }
     }
     shortcuts += itk::MeshExtraction::NeitherOppositeAngleIsObtuse(q) ? 1 : 0;
-    const EdgeSwapVerdict verdict = itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict;
+    const EdgeSwapDecision decision = itk::MeshExtraction::EvaluateEdgeSwap(q, p);
+    const EdgeSwapVerdict  verdict = decision.verdict;
     swaps += verdict == EdgeSwapVerdict::Swap ? 1 : 0;
     EXPECT_EQ(verdict, exactVerdict(q)) << q.c << ' ' << q.d;
+    // The criterion's half alone (as SwapEdges asks it) agrees, gain included.
+    double gain = -1.0;
+    EXPECT_EQ(itk::MeshExtraction::EdgeSwapImproves(q, p, gain), verdict != EdgeSwapVerdict::NoImprovement);
+    EXPECT_EQ(gain, decision.gain);
   }
   EXPECT_GT(shortcuts, 1000);
   EXPECT_GT(swaps, 100);
