@@ -566,24 +566,28 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
         candidates.push_back(f);
       }
     }
-    // The normals of the candidates (the other faces kept their vertices' positions):
-    // of every face in the first round.
-    auto computeNormals = [&](std::size_t count, auto face) {
-      ParallelForBlocks(count, BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
-        for (std::size_t i = begin; i < end; ++i)
-        {
-          const std::size_t f = face(i);
-          normals[f] = faceNormal(check.points, f);
-        }
-      });
-    };
+    // The normals of the candidates; the other faces kept their vertices' positions,
+    // and so their normals: in the first round those at `start` (the same points,
+    // made by the same ToPhysical, so the same bits).
     if (round == 0)
     {
-      computeNormals(numberOfTriangles, [](std::size_t i) { return i; });
+      ParallelForBlocks(numberOfTriangles, BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t f = begin; f < end; ++f)
+        {
+          const auto & t = triangles[f];
+          normals[f] = changedVertex[t[0]] || changedVertex[t[1]] || changedVertex[t[2]] ? faceNormal(check.points, f)
+                                                                                         : startNormals[f];
+        }
+      });
     }
     else
     {
-      computeNormals(candidates.size(), [&candidates](std::size_t i) { return candidates[i]; });
+      ParallelForBlocks(candidates.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          normals[candidates[i]] = faceNormal(check.points, candidates[i]);
+        }
+      });
     }
     // Flipped, degenerate or newly folded candidates, per block (the nodes are sorted
     // and made unique below, so the blocks' order does not matter).
