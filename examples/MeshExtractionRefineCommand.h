@@ -38,6 +38,20 @@ namespace MeshExtractionCLI
 // ------------------------------------------------------------------------------
 using RefineMeshType = itk::QuadEdgeMesh<double, 3>;
 using RefineImageType = itk::Image<float, 3>;
+using RefineFilterType = itk::ScaleSpaceEdgeMeshRefinementFilter<RefineMeshType, RefineImageType>;
+
+/** The defaults of the options that build the initial mesh (the command's own, not
+ * a filter's; the help prints these). */
+constexpr long RefineDefaultSubdivisions = 3;
+constexpr char RefineDefaultInside[] = "above";
+constexpr char RefineDefaultRelaxation[] = "none";
+
+/** The name --search gives the filter's search direction. */
+inline const char *
+SearchDirectionName(itk::MeshExtractionEnums::EdgeSearchDirection direction)
+{
+  return direction == itk::MeshExtractionEnums::EdgeSearchDirection::ImageGradient ? "gradient" : "normal";
+}
 
 /** A triangle QuadEdgeMesh from any mesh file ITK reads (quadrilaterals split); a
  * mesh the quad-edge structure cannot hold is refused with a clear error. */
@@ -72,7 +86,7 @@ InitialSphereMesh(const Arguments & args, const RefineImageType * image)
   {
     throw UsageError("--radius must be > 0, got '" + args.Get("radius") + "'");
   }
-  const long subdivisions = args.GetInteger("subdivisions", 3);
+  const long subdivisions = args.GetInteger("subdivisions", RefineDefaultSubdivisions);
   if (subdivisions < 0 || subdivisions > 7)
   {
     throw UsageError("--subdivisions must be in 0..7, got " + std::to_string(subdivisions));
@@ -112,12 +126,12 @@ InitialSurfaceNetsMesh(const Arguments & args, const RefineImageType * image)
   {
     throw UsageError("--initial surfacenets needs --iso V (the threshold of the rough segmentation)");
   }
-  const std::string inside = args.Get("inside", "above");
+  const std::string inside = args.Get("inside", RefineDefaultInside);
   if (inside != "above" && inside != "below")
   {
     throw UsageError("--inside must be above or below, got '" + inside + "'");
   }
-  const std::string relaxation = args.Get("relaxation", "none");
+  const std::string relaxation = args.Get("relaxation", RefineDefaultRelaxation);
   if (relaxation != "none" && relaxation != "sna")
   {
     throw UsageError("--relaxation must be none or sna, got '" + relaxation + "'");
@@ -249,17 +263,19 @@ RunRefine(const Arguments & args)
   {
     throw UsageError("give the largest distance between the initial mesh and the object's edge: --max-deviation MM");
   }
+  // Options not given keep the filter's defaults.
+  auto         filter = RefineFilterType::New();
   const double deviation = args.GetDouble("max-deviation", 0.0);
-  const double target = args.GetDouble("target-quality", 0.9);
-  const long   cycles = args.GetInteger("cycles", 10);
-  const long   smoothingSteps = args.GetInteger("smoothing-steps", 20);
-  const long   perOctave = args.GetInteger("scales-per-octave", 4);
+  const double target = args.GetDouble("target-quality", filter->GetTargetQuality());
+  const long   cycles = args.GetInteger("cycles", filter->GetMaximumNumberOfCycles());
+  const long   smoothingSteps = args.GetInteger("smoothing-steps", filter->GetMaximumNumberOfSmoothingSteps());
+  const long   perOctave = args.GetInteger("scales-per-octave", filter->GetNumberOfScalesPerOctave());
   const long   threads = args.GetInteger("threads", 0);
   if (cycles < 0 || smoothingSteps < 1 || perOctave < 1 || threads < 0)
   {
     throw UsageError("--cycles must be >= 0, --smoothing-steps and --scales-per-octave >= 1, --threads >= 0");
   }
-  const std::string search = args.Get("search", "gradient");
+  const std::string search = args.Get("search", SearchDirectionName(filter->GetSearchDirection()));
   if (search != "gradient" && search != "normal")
   {
     throw UsageError("--search must be gradient or normal, got '" + search + "'");
@@ -310,8 +326,6 @@ RunRefine(const Arguments & args)
     before = MeasureForRefine(mesh, "initial", reference);
   }
 
-  using FilterType = itk::ScaleSpaceEdgeMeshRefinementFilter<RefineMeshType, RefineImageType>;
-  auto filter = FilterType::New();
   filter->SetInput(mesh);
   filter->SetInputImage(image);
   filter->SetMaximumDeviation(deviation);
@@ -319,7 +333,7 @@ RunRefine(const Arguments & args)
   filter->SetMaximumNumberOfCycles(static_cast<unsigned int>(cycles));
   filter->SetMaximumNumberOfSmoothingSteps(static_cast<unsigned int>(smoothingSteps));
   filter->SetNumberOfScalesPerOctave(static_cast<unsigned int>(perOctave));
-  filter->SetMinimumScale(args.GetDouble("minimum-scale", 0.0));
+  filter->SetMinimumScale(args.GetDouble("minimum-scale", filter->GetMinimumScale()));
   filter->SetSearchDirection(search == "gradient" ? Direction::ImageGradient : Direction::VertexNormal);
   filter->SetSubSampleRefinement(!args.Has("thesis-detector"));
   filter->SetComputeInaccuracy(!args.Has("no-inaccuracy"));
@@ -411,22 +425,35 @@ MakeRefineCommand()
                   "--target-quality, and ends with ED and ES. D is the largest distance between the initial mesh and\n"
                   "the object's edge, in mm. Prints the step table (thesis Table 4.1) and writes OUT (format from\n"
                   "its extension). Distances are physical (spacing, origin, direction).";
+  const auto defaults = RefineFilterType::New();
   c.options = {
     { "max-deviation", "MM", "largest distance from the initial mesh to the edge (capture range)", "required" },
-    { "target-quality", "Q", "mean q_area to reach, in (0, 1]", "0.9" },
+    { "target-quality", "Q", "mean q_area to reach, in (0, 1]", DefaultText(defaults->GetTargetQuality()) },
     { "initial", "sphere|surfacenets", "build the initial mesh instead of reading MESH", "" },
     { "radius", "MM", "sphere: radius", "" },
     { "center", "X,Y,Z", "sphere: centre", "the image's centre" },
-    { "subdivisions", "N", "sphere: icosahedron subdivisions (10*4^N+2 vertices)", "3" },
+    { "subdivisions",
+      "N",
+      "sphere: icosahedron subdivisions (10*4^N+2 vertices)",
+      DefaultText(RefineDefaultSubdivisions) },
     { "iso", "V", "surfacenets: threshold of the rough segmentation", "" },
-    { "inside", "above|below", "surfacenets: which side of --iso is the object", "above" },
-    { "relaxation", "none|sna", "surfacenets: relaxation of the rough mesh", "none" },
+    { "inside", "above|below", "surfacenets: which side of --iso is the object", RefineDefaultInside },
+    { "relaxation", "none|sna", "surfacenets: relaxation of the rough mesh", RefineDefaultRelaxation },
     { "largest-component", "", "keep only the initial mesh's largest connected component", "" },
-    { "cycles", "N", "largest number of S...ED ES cycles after the first ED ES", "10" },
-    { "smoothing-steps", "N", "largest number of smoothing steps per cycle", "20" },
-    { "scales-per-octave", "N", "scales per doubling of sigma", "4" },
+    { "cycles",
+      "N",
+      "largest number of S...ED ES cycles after the first ED ES",
+      DefaultText(defaults->GetMaximumNumberOfCycles()) },
+    { "smoothing-steps",
+      "N",
+      "largest number of smoothing steps per cycle",
+      DefaultText(defaults->GetMaximumNumberOfSmoothingSteps()) },
+    { "scales-per-octave", "N", "scales per doubling of sigma", DefaultText(defaults->GetNumberOfScalesPerOctave()) },
     { "minimum-scale", "MM", "smallest scale", "the voxel length (smallest spacing)" },
-    { "search", "gradient|normal", "search line: image gradient or vertex normal", "gradient" },
+    { "search",
+      "gradient|normal",
+      "search line: image gradient or vertex normal",
+      SearchDirectionName(defaults->GetSearchDirection()) },
     { "thesis-detector", "", "no sub-sample refinement of the edge (the thesis' 5 samples only)", "" },
     { "no-inaccuracy", "", "skip the inaccuracy measurement after each ED", "" },
     { "phantom", "NAME", "IMAGE is this phantom: add distances to its exact surface to the table", "" },
