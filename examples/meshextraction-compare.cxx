@@ -44,6 +44,25 @@ namespace CLI = MeshExtractionCLI;
 namespace
 {
 const char * const kProgram = "meshextraction-compare";
+// The defaults the help prints and the options fall back to.
+const char * const kDefaultPhantom = "sphere";
+const char * const kDefaultGridSize = "128"; // this tool's default grid: 128^3
+constexpr long     kDefaultRepeat = 3;
+
+/** The keys of the methods run when --methods is not given, comma-separated. */
+std::string
+DefaultMethodKeys()
+{
+  std::string keys;
+  for (const Method & m : Methods())
+  {
+    if (m.byDefault)
+    {
+      keys += (keys.empty() ? "" : ",") + m.key;
+    }
+  }
+  return keys;
+}
 
 /** The input and everything the table's header says about it. */
 struct Input
@@ -83,14 +102,14 @@ MakeCommand()
                   "(--reference-mesh), the plain marching-cubes iso-surface (--reference marching-cubes), or\n"
                   "none (default for images).";
   c.options = {
-    { "phantom", "NAME", "phantom input: " + ME::PhantomShapeNameList(), "sphere" },
+    { "phantom", "NAME", "phantom input: " + ME::PhantomShapeNameList(), kDefaultPhantom },
     { "iso", "V", "iso-value (phantoms: 0 for distance maps)", "" },
     { "inside", "above|below", "which side of the iso-value is the object", "above; below for distance maps" },
     { "reference", "exact|marching-cubes|none", "reference surface for the distances", "exact / none" },
     { "reference-mesh", "FILE", "measure distances to this mesh", "" },
-    { "methods", "LIST", "comma-separated method keys, or 'all' (see --list-methods)", "mc,fe,fe-sinc,bmms,sna,snert" },
+    { "methods", "LIST", "comma-separated method keys, or 'all' (see --list-methods)", DefaultMethodKeys() },
     { "list-methods", "", "list the methods and exit", "" },
-    { "repeat", "N", "runs per method; the best wall time is reported", "3" },
+    { "repeat", "N", "runs per method; the best wall time is reported", CLI::DefaultText(kDefaultRepeat) },
     { "threads", "N", "ITK work units and VTK SMP threads (0: all cores)", "0" },
     { "no-fork", "", "run the methods in this process (no peak-memory figures)", "" },
     { "no-self-intersections", "", "skip the self-intersection test (large meshes)", "" },
@@ -101,7 +120,7 @@ MakeCommand()
   for (auto o : CLI::GridOptions())
   {
     o.help += " (phantoms)";
-    o.defaultValue = o.name == "size" ? "128" : o.defaultValue;
+    o.defaultValue = o.name == "size" ? kDefaultGridSize : o.defaultValue;
     c.options.push_back(o);
   }
   c.minimumPositional = 0;
@@ -236,11 +255,11 @@ LoadInput(const CLI::Arguments & args)
   }
   else
   {
-    const ME::PhantomShape shape = CLI::ShapeFromName(args.Get("phantom", "sphere"));
+    const ME::PhantomShape shape = CLI::ShapeFromName(args.Get("phantom", kDefaultPhantom));
     CLI::Arguments         gridArguments = args;
     if (!args.Has("size"))
     {
-      gridArguments.Set("size", "128"); // this tool's default grid: 128^3
+      gridArguments.Set("size", kDefaultGridSize);
     }
     const ME::PhantomGrid            grid = CLI::GridFromArguments(shape, gridArguments);
     const ME::PhantomImageParameters parameters = ME::DefaultPhantomImageParameters(shape);
@@ -605,7 +624,7 @@ Run(const CLI::Arguments & args)
     ListMethods(std::cout);
     return 0;
   }
-  const long repeat = args.GetInteger("repeat", 3);
+  const long repeat = args.GetInteger("repeat", kDefaultRepeat);
   if (repeat < 1)
   {
     throw CLI::UsageError("--repeat must be >= 1");
