@@ -382,18 +382,26 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
   }
   ++cache.numberOfIncrementalSearches;
   auto intersect = [&](std::uint32_t f, std::uint32_t g) { return accept(f, g) && MeshFacesIntersect(mesh, f, g); };
-  std::vector<FacePair> found;
-  // Near pairs of faces that did not move.
-  for (const auto & block : cache.nearPairs)
-  {
-    for (const auto & p : block)
+  // Near pairs of faces that did not move: the cache's blocks of them on the work
+  // units (the pairs are sorted below, so the blocks' order does not matter).
+  FacePairBlocks nearFound(cache.nearPairs.size());
+  ParallelForBlocks(cache.nearPairs.size(), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t b = begin; b < end; ++b)
     {
-      if (!moved[p.first] && !moved[p.second] && acceptApart(p.first, p.second) &&
-          MeshFacesIntersect(mesh, p.first, p.second))
+      for (const auto & p : cache.nearPairs[b])
       {
-        found.emplace_back(std::min(p.first, p.second), std::max(p.first, p.second));
+        if (!moved[p.first] && !moved[p.second] && acceptApart(p.first, p.second) &&
+            MeshFacesIntersect(mesh, p.first, p.second))
+        {
+          nearFound[b].emplace_back(std::min(p.first, p.second), std::max(p.first, p.second));
+        }
       }
     }
+  });
+  std::vector<FacePair> found;
+  for (const auto & block : nearFound)
+  {
+    found.insert(found.end(), block.begin(), block.end());
   }
   // Faces that did not move and meet at a vertex whose fan is not certified now.
   std::vector<FacePair> corners; // (vertex, face)
@@ -573,9 +581,19 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
   auto                       valid = [&mesh](std::uint32_t f) { return MeshFaceIsProper(mesh, f); };
   std::vector<std::uint32_t> probes;
   std::vector<bool>          probed(n, false);
-  for (std::uint32_t f : queries)
+  // Which queries are proper faces (an exact test each) on the work units; then the
+  // probes, each once, in the queries' order.
+  std::vector<std::uint8_t> proper(queries.size());
+  ParallelForBlocks(queries.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      proper[i] = queries[i] < n && valid(queries[i]) ? 1 : 0;
+    }
+  });
+  for (std::size_t i = 0; i < queries.size(); ++i)
   {
-    if (f < n && !probed[f] && valid(f))
+    const std::uint32_t f = queries[i];
+    if (proper[i] && !probed[f])
     {
       probed[f] = true;
       probes.push_back(f);
