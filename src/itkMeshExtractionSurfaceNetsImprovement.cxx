@@ -548,8 +548,11 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   {
     changedVertex[v] = positions[v] != start[v]; // `start` is valid: only moved nodes matter
   }
-  std::vector<std::uint32_t>   candidateList;              // kept from round to round
-  LargeBlockVector<FaceNormal> normals(numberOfTriangles); // at check.points
+  std::vector<std::uint32_t> candidateList; // kept from round to round
+  // The normals at check.points: the start normals until a face's vertex moves (the
+  // same points, made by the same ToPhysical, so the same bits); each round computes
+  // those of its candidates.
+  LargeBlockVector<FaceNormal> normals = startNormals;
   for (unsigned int round = 0; round < 64; ++round)
   {
     if (round > 0)
@@ -566,29 +569,12 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
         candidates.push_back(f);
       }
     }
-    // The normals of the candidates; the other faces kept their vertices' positions,
-    // and so their normals: in the first round those at `start` (the same points,
-    // made by the same ToPhysical, so the same bits).
-    if (round == 0)
-    {
-      ParallelForBlocks(numberOfTriangles, BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
-        for (std::size_t f = begin; f < end; ++f)
-        {
-          const auto & t = triangles[f];
-          normals[f] = changedVertex[t[0]] || changedVertex[t[1]] || changedVertex[t[2]] ? faceNormal(check.points, f)
-                                                                                         : startNormals[f];
-        }
-      });
-    }
-    else
-    {
-      ParallelForBlocks(candidates.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
-        for (std::size_t i = begin; i < end; ++i)
-        {
-          normals[candidates[i]] = faceNormal(check.points, candidates[i]);
-        }
-      });
-    }
+    ParallelForBlocks(candidates.size(), BlockSize, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        normals[candidates[i]] = faceNormal(check.points, candidates[i]);
+      }
+    });
     // Flipped, degenerate or newly folded candidates, per block (the nodes are sorted
     // and made unique below, so the blocks' order does not matter).
     std::vector<std::vector<std::uint32_t>> badPerBlock((candidates.size() + BlockSize - 1) / BlockSize);
