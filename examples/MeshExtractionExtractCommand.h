@@ -23,7 +23,11 @@
 #include "itkImplicitSurfaceImageSource.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
+#include <algorithm>
 #include <fstream>
+#include <iterator>
+#include <string>
+#include <utility>
 
 namespace MeshExtractionCLI
 {
@@ -76,6 +80,26 @@ ExtractDefaults()
   s.rounds = filter->GetNumberOfImprovementRounds();
   s.convergedSwaps = filter->GetConvergedSwapFraction();
   return s;
+}
+
+/** The names --triangulation takes, with the filter's setting each names. */
+constexpr std::pair<const char *, SurfaceNetsEnums::Triangulation> TriangulationNames[] = {
+  { "shortest", SurfaceNetsEnums::Triangulation::ShortestDiagonal },
+  { "delaunay", SurfaceNetsEnums::Triangulation::Delaunay },
+  { "quads", SurfaceNetsEnums::Triangulation::Quadrilaterals },
+};
+
+inline std::string
+TriangulationName(SurfaceNetsEnums::Triangulation triangulation)
+{
+  for (const auto & entry : TriangulationNames)
+  {
+    if (entry.second == triangulation)
+    {
+      return entry.first;
+    }
+  }
+  return "";
 }
 
 inline SurfaceNetsEnums::Relaxation
@@ -231,22 +255,14 @@ RunExtract(const Arguments & args)
   if (args.Has("triangulation"))
   {
     const std::string triangulation = args.Get("triangulation");
-    if (triangulation == "shortest")
-    {
-      s.triangulation = SurfaceNetsEnums::Triangulation::ShortestDiagonal;
-    }
-    else if (triangulation == "delaunay")
-    {
-      s.triangulation = SurfaceNetsEnums::Triangulation::Delaunay;
-    }
-    else if (triangulation == "quads")
-    {
-      s.triangulation = SurfaceNetsEnums::Triangulation::Quadrilaterals;
-    }
-    else
+    const auto        named = std::find_if(std::begin(TriangulationNames),
+                                    std::end(TriangulationNames),
+                                    [&triangulation](const auto & entry) { return triangulation == entry.first; });
+    if (named == std::end(TriangulationNames))
     {
       throw UsageError("--triangulation must be shortest, delaunay or quads, got '" + triangulation + "'");
     }
+    s.triangulation = named->second;
   }
   if (args.Has("sigma"))
   {
@@ -352,7 +368,7 @@ MakeExtractCommand()
                   "SNA only averages. Coordinates are physical (spacing, origin, direction).";
   c.options = {
     { "iso", "V", "iso-value of the object's boundary", "0 for a phantom" },
-    { "inside", "above|below", "which side of --iso is the object", "above" },
+    { "inside", "above|below", "which side of --iso is the object", defaults.insideAbove ? "above" : "below" },
     { "label",
       "L",
       "the object is the voxels equal to L (INPUT or --labels is a label image)",
@@ -361,9 +377,12 @@ MakeExtractCommand()
     { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
     { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
     { "iterations", "N", "maximum relaxation iterations", DefaultText(defaults.iterations) },
-    { "triangulation", "MODE", "shortest, delaunay or quads", "shortest" },
+    { "triangulation", "MODE", "shortest, delaunay or quads", TriangulationName(defaults.triangulation) },
     { "sigma", "MM", "Gaussian-derivative gradients of this scale instead of central differences", "" },
-    { "quality", "standard|high", "high: alternate regularity edge swaps with SNERT on the triangles", "standard" },
+    { "quality",
+      "standard|high",
+      "high: alternate regularity edge swaps with SNERT on the triangles",
+      defaults.highQuality ? "high" : "standard" },
     { "rounds", "N", "rounds of swaps and relaxation for --quality high", DefaultText(defaults.rounds) },
     { "converged-swaps",
       "F",

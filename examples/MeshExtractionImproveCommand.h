@@ -164,7 +164,8 @@ RunImprove(const Arguments & args)
   {
     throw UsageError("--iterations must be >= 0, got " + std::to_string(iterations));
   }
-  const long swapIterations = args.GetInteger("swap-iterations", 20);
+  const long swapIterations = args.GetInteger(
+    "swap-iterations", itk::EdgeSwapQuadEdgeMeshFilter<ImproveMeshType>::New()->GetMaximumNumberOfIterations());
   if (swapIterations < 0)
   {
     throw UsageError("--swap-iterations must be >= 0, got " + std::to_string(swapIterations));
@@ -290,7 +291,10 @@ MakeImproveCommand()
     { "pass-band", "K", "taubin: pass-band frequency k_PB; mu from 1/lambda + 1/mu = K", "" },
     { "volume-preservation", "", "laplacian: approximate volume preservation (thesis eq. 2.7-2.10)", "" },
     { "swap", "regularity|delaunay|shortest-edge", "swap edges first by this criterion", "no swaps" },
-    { "swap-iterations", "N", "largest number of passes over the edges", "20" },
+    { "swap-iterations",
+      "N",
+      "largest number of passes over the edges",
+      DefaultText(swapDefaults->GetMaximumNumberOfIterations()) },
     { "feature-angle",
       "DEG",
       "no swap across or creating a crease sharper than this",
