@@ -33,31 +33,119 @@ namespace MeshExtractionCLI
 // ------------------------------------------------------------------------------
 using ImproveMeshType = itk::QuadEdgeMesh<double, 3>;
 
-/** The value of `--name` among `names` (index into `values`), or `fallback`. */
+/** The names an option accepts, each with its value. */
+template <typename T>
+using OptionNames = std::vector<std::pair<std::string, T>>;
+
+/** The names of `table` joined as "a, b or c" (or "a|b|c" with `bars`). */
+template <typename T>
+std::string
+OptionChoices(const OptionNames<T> & table, bool bars = false)
+{
+  std::string list;
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    list += (i == 0 ? "" : (bars ? "|" : (i + 1 == table.size() ? " or " : ", "))) + table[i].first;
+  }
+  return list;
+}
+
+/** The name of `value` in `table`. */
+template <typename T>
+std::string
+OptionName(const OptionNames<T> & table, T value)
+{
+  for (const auto & entry : table)
+  {
+    if (entry.second == value)
+    {
+      return entry.first;
+    }
+  }
+  return "";
+}
+
+/** The value of `--name` in `table`, or `fallback`. */
 template <typename T>
 T
-ChooseOption(const Arguments &                args,
-             const std::string &              name,
-             const std::vector<std::string> & names,
-             const std::vector<T> &           values,
-             T                                fallback)
+ChooseOption(const Arguments & args, const std::string & name, const OptionNames<T> & table, T fallback)
 {
   if (!args.Has(name))
   {
     return fallback;
   }
   const std::string value = args.Get(name);
-  std::string       list;
-  for (std::size_t i = 0; i < names.size(); ++i)
+  for (const auto & entry : table)
   {
-    if (names[i] == value)
+    if (entry.first == value)
     {
-      return values[i];
+      return entry.second;
     }
-    list += (i == 0 ? "" : (i + 1 == names.size() ? " or " : ", ")) + names[i];
   }
-  throw UsageError("--" + name + " must be " + list + ", got '" + value + "'");
+  throw UsageError("--" + name + " must be " + OptionChoices(table) + ", got '" + value + "'");
 }
+
+using SmoothingWeights = itk::MeshExtractionEnums::SmoothingWeights;
+using SmoothingUpdate = itk::MeshExtractionEnums::SmoothingUpdate;
+using MovementConstraint = itk::MeshExtractionEnums::MovementConstraint;
+using EdgeSwapCriterion = itk::MeshExtractionEnums::EdgeSwapCriterion;
+
+inline const OptionNames<std::string> &
+SmoothingNames()
+{
+  static const OptionNames<std::string> table = { { "laplacian", "laplacian" },
+                                                  { "taubin", "taubin" },
+                                                  { "none", "none" } };
+  return table;
+}
+
+inline const OptionNames<SmoothingWeights> &
+WeightNames()
+{
+  static const OptionNames<SmoothingWeights> table = { { "uniform", SmoothingWeights::Uniform },
+                                                       { "inverse-edge-length", SmoothingWeights::InverseEdgeLength },
+                                                       { "area", SmoothingWeights::Area },
+                                                       { "cotangent", SmoothingWeights::Cotangent },
+                                                       { "angle-bisector", SmoothingWeights::AngleBisector } };
+  return table;
+}
+
+inline const OptionNames<SmoothingUpdate> &
+UpdateNames()
+{
+  static const OptionNames<SmoothingUpdate> table = { { "batch", SmoothingUpdate::Batch },
+                                                      { "immediate", SmoothingUpdate::Immediate } };
+  return table;
+}
+
+inline const OptionNames<MovementConstraint> &
+ConstraintNames()
+{
+  static const OptionNames<MovementConstraint> table = { { "none", MovementConstraint::None },
+                                                         { "centroid", MovementConstraint::Centroid },
+                                                         { "safe", MovementConstraint::Safe } };
+  return table;
+}
+
+inline const OptionNames<EdgeSwapCriterion> &
+SwapCriterionNames()
+{
+  static const OptionNames<EdgeSwapCriterion> table = { { "regularity", EdgeSwapCriterion::Regularity },
+                                                        { "delaunay", EdgeSwapCriterion::Delaunay },
+                                                        { "shortest-edge", EdgeSwapCriterion::ShortestEdge } };
+  return table;
+}
+
+/** The tool's own defaults, where they are not the filters': Laplacian smoothing
+ * after the swaps, restricted to the centroid of the neighbours (thesis 4.2.2; the
+ * filter itself restricts nothing by default), 10 iterations, regularity swaps. */
+struct ImproveDefaults
+{
+  static constexpr const char *       smoothing = "laplacian";
+  static constexpr MovementConstraint constraint = MovementConstraint::Centroid;
+  static constexpr long               iterations = 10;
+  static constexpr EdgeSwapCriterion  criterion = EdgeSwapCriterion::Regularity;
+};
 
 /** Reads any mesh ITK reads into a triangle QuadEdgeMesh (quadrilaterals are split
  * along their shorter diagonal); a mesh the quad-edge structure cannot hold
@@ -95,32 +183,17 @@ MeasureForImprove(const ImproveMeshType * mesh, const std::string & name)
 inline int
 RunImprove(const Arguments & args)
 {
-  using Weights = itk::MeshExtractionEnums::SmoothingWeights;
-  using Update = itk::MeshExtractionEnums::SmoothingUpdate;
-  using Constraint = itk::MeshExtractionEnums::MovementConstraint;
-  using Criterion = itk::MeshExtractionEnums::EdgeSwapCriterion;
-
-  const std::string smoothing = ChooseOption<std::string>(
-    args, "smoothing", { "laplacian", "taubin", "none" }, { "laplacian", "taubin", "none" }, "laplacian");
-  const Weights weights = ChooseOption(
-    args,
-    "weights",
-    { "uniform", "inverse-edge-length", "area", "cotangent", "angle-bisector" },
-    { Weights::Uniform, Weights::InverseEdgeLength, Weights::Area, Weights::Cotangent, Weights::AngleBisector },
-    Weights::Uniform);
-  const Update update =
-    ChooseOption(args, "update", { "batch", "immediate" }, { Update::Batch, Update::Immediate }, Update::Batch);
-  const Constraint constraint = ChooseOption(args,
-                                             "constraint",
-                                             { "none", "centroid", "safe" },
-                                             { Constraint::None, Constraint::Centroid, Constraint::Safe },
-                                             Constraint::Centroid);
-  const bool       swap = args.Has("swap");
-  const Criterion  criterion = ChooseOption(args,
-                                           "swap",
-                                           { "regularity", "delaunay", "shortest-edge" },
-                                           { Criterion::Regularity, Criterion::Delaunay, Criterion::ShortestEdge },
-                                           Criterion::Regularity);
+  // The weights and the update mode start as the filters' defaults (the Laplacian and
+  // Taubin filters share them).
+  const auto        laplacianDefaults = itk::LaplacianSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
+  const std::string smoothing =
+    ChooseOption(args, "smoothing", SmoothingNames(), std::string(ImproveDefaults::smoothing));
+  const SmoothingWeights   weights = ChooseOption(args, "weights", WeightNames(), laplacianDefaults->GetWeights());
+  const SmoothingUpdate    update = ChooseOption(args, "update", UpdateNames(), laplacianDefaults->GetUpdateMode());
+  const MovementConstraint constraint =
+    ChooseOption(args, "constraint", ConstraintNames(), ImproveDefaults::constraint);
+  const bool              swap = args.Has("swap");
+  const EdgeSwapCriterion criterion = ChooseOption(args, "swap", SwapCriterionNames(), ImproveDefaults::criterion);
 
   // Options that only make sense with another choice.
   const char * laplacianOnly[] = { "constraint", "relaxation", "volume-preservation" };
@@ -159,7 +232,7 @@ RunImprove(const Arguments & args)
       throw UsageError(std::string("--") + option + " needs --swap");
     }
   }
-  const long iterations = args.GetInteger("iterations", 10);
+  const long iterations = args.GetInteger("iterations", ImproveDefaults::iterations);
   if (iterations < 0)
   {
     throw UsageError("--iterations must be >= 0, got " + std::to_string(iterations));
@@ -214,11 +287,12 @@ RunImprove(const Arguments & args)
     filter->SetVolumePreservation(args.Has("volume-preservation"));
     ReportProgress(filter.GetPointer(), "laplacian smoothing");
     filter->Update();
-    std::cout << "laplacian smoothing (" << args.Get("weights", "uniform") << ", " << args.Get("constraint", "centroid")
-              << ", " << args.Get("update", "batch") << "): " << iterations << " iterations of "
-              << filter->GetNumberOfMovableVertices() << " movable vertices, " << filter->GetNumberOfMoves()
-              << " moves, " << filter->GetNumberOfShortenedMoves() << " shortened and "
-              << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
+    std::cout << "laplacian smoothing (" << OptionName(WeightNames(), weights) << ", "
+              << OptionName(ConstraintNames(), constraint) << ", " << OptionName(UpdateNames(), update)
+              << "): " << iterations << " iterations of " << filter->GetNumberOfMovableVertices()
+              << " movable vertices, " << filter->GetNumberOfMoves() << " moves, "
+              << filter->GetNumberOfShortenedMoves() << " shortened and " << filter->GetNumberOfRejectedMoves()
+              << " rejected by the inversion guard\n";
     mesh = filter->GetOutput();
     mesh->DisconnectPipeline();
   }
@@ -235,7 +309,7 @@ RunImprove(const Arguments & args)
     ReportProgress(filter.GetPointer(), "taubin smoothing");
     filter->Update();
     std::cout << "taubin smoothing (lambda " << filter->GetLambda() << ", mu " << filter->GetEffectiveMu() << ", "
-              << args.Get("weights", "uniform") << ", " << args.Get("update", "batch") << "): " << iterations
+              << OptionName(WeightNames(), weights) << ", " << OptionName(UpdateNames(), update) << "): " << iterations
               << " iterations of " << filter->GetNumberOfMovableVertices() << " movable vertices, "
               << filter->GetNumberOfMoves() << " moves, " << filter->GetNumberOfShortenedMoves() << " shortened and "
               << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
@@ -277,11 +351,20 @@ MakeImproveCommand()
                   "would invert or degenerate a triangle is halved or rejected, and the counts are printed.\n"
                   "Boundary vertices of open meshes stay in place. --report prints the quality before and after.";
   c.options = {
-    { "smoothing", "laplacian|taubin|none", "smoothing after the swaps", "laplacian" },
-    { "weights", "NAME", "uniform, inverse-edge-length, area, cotangent or angle-bisector", "uniform" },
-    { "constraint", "none|centroid|safe", "laplacian: move restriction (thesis 4.2.2, Fig. 4.8)", "centroid" },
-    { "update", "batch|immediate", "when new positions take effect", "batch" },
-    { "iterations", "N", "smoothing iterations (taubin: lambda|mu pairs)", "10" },
+    { "smoothing", OptionChoices(SmoothingNames(), true), "smoothing after the swaps", ImproveDefaults::smoothing },
+    { "weights", "NAME", OptionChoices(WeightNames()), OptionName(WeightNames(), laplacianDefaults->GetWeights()) },
+    { "constraint",
+      OptionChoices(ConstraintNames(), true),
+      "laplacian: move restriction (thesis 4.2.2, Fig. 4.8)",
+      OptionName(ConstraintNames(), ImproveDefaults::constraint) },
+    { "update",
+      OptionChoices(UpdateNames(), true),
+      "when new positions take effect",
+      OptionName(UpdateNames(), laplacianDefaults->GetUpdateMode()) },
+    { "iterations",
+      "N",
+      "smoothing iterations (taubin: lambda|mu pairs)",
+      std::to_string(ImproveDefaults::iterations) },
     { "relaxation",
       "F",
       "laplacian: relaxation factor in (0, 1]",
@@ -290,7 +373,7 @@ MakeImproveCommand()
     { "mu", "M", "taubin: negative step factor, < -lambda", DefaultText(taubinDefaults->GetMu()) },
     { "pass-band", "K", "taubin: pass-band frequency k_PB; mu from 1/lambda + 1/mu = K", "" },
     { "volume-preservation", "", "laplacian: approximate volume preservation (thesis eq. 2.7-2.10)", "" },
-    { "swap", "regularity|delaunay|shortest-edge", "swap edges first by this criterion", "no swaps" },
+    { "swap", OptionChoices(SwapCriterionNames(), true), "swap edges first by this criterion", "no swaps" },
     { "swap-iterations",
       "N",
       "largest number of passes over the edges",
