@@ -312,6 +312,65 @@ CheckVoxelRange(const std::vector<double> & isoValues, const std::vector<TPixel>
   }
 }
 
+TEST(SurfaceNetsRelaxation, ANodeOutsideItsCellStepsAlongTheTrilinearFieldOfTheCellItIsIn)
+{
+  // I = x^2. One node of the cell x in [1, 2], allowed to move in x over [1, 3] (as
+  // the high-quality mode lets nodes leave their cells), at x = 2.3: the trilinear
+  // field of the cell [2, 3] it is in (4 + 5 (x - 2)) reaches the iso-value 6.25 at
+  // x = 2.45, where one gradient step lands it; the own cell's field extrapolated, or
+  // the image's finite-difference slope over +-0.5 voxel (which would land at 2.463),
+  // would miss it. The same with a cache kept from an earlier call, which then
+  // describes the cell the node is in.
+  auto image = MakeImage<FloatImage>(8, 4, 4);
+  for (itk::ImageRegionIteratorWithIndex<FloatImage> it(image, image->GetBufferedRegion()); !it.IsAtEnd(); ++it)
+  {
+    const double x = it.GetIndex()[0];
+    it.Set(static_cast<float>(x * x));
+  }
+  ME::SurfaceNet net;
+  net.size = { { 8, 4, 4 } };
+  ME::SurfaceCell cell{};
+  cell.x = 1;
+  cell.y = 1;
+  cell.z = 1;
+  net.cells.push_back(cell);
+  net.nodeCell.push_back(0);
+  net.positions.push_back(ME::MakeVec3(2.3, 1.5, 1.5));
+  net.boxLower.push_back(ME::MakeVec3(1.0, 1.0, 1.0));
+  net.boxUpper.push_back(ME::MakeVec3(3.0, 2.0, 2.0));
+  net.neighborStart.assign(2, 0);
+  const ME::SurfaceNetsSampler<FloatImage> sampler(image.GetPointer(), 6.25, -1.0);
+  ME::SurfaceNetsRelaxationParameters      parameters;
+  parameters.kind = ME::SurfaceNetsRelaxationKind::Gradient;
+  parameters.maximumNumberOfIterations = 1;
+  parameters.centralDifferences = true;
+  parameters.isoValue = 6.25;
+  parameters.indexToPhysical.SetIdentity();
+  parameters.numberOfWorkUnits = 1;
+  auto gradient = [&sampler](const ME::Vec3 & q, std::uint32_t) { return sampler.Gradient(q); };
+  for (const bool keptCache : { false, true })
+  {
+    SCOPED_TRACE(keptCache);
+    ME::SurfaceNetsCellCache cache;
+    if (keptCache)
+    {
+      // A cache made by an earlier call, with the node inside its own cell.
+      net.positions[0] = ME::MakeVec3(1.5, 1.5, 1.5);
+      ME::RelaxSurfaceNet(net, &sampler, gradient, parameters, nullptr, &cache);
+      ASSERT_EQ(cache.entries.size(), 1u);
+      EXPECT_EQ(cache.entries[0].corner[0], 1.0);
+      net.positions[0] = ME::MakeVec3(2.3, 1.5, 1.5);
+    }
+    ME::RelaxSurfaceNet(net, &sampler, gradient, parameters, nullptr, &cache);
+    EXPECT_NEAR(net.positions[0][0], 2.45, 1e-5);
+    EXPECT_EQ(net.positions[0][1], 1.5);
+    EXPECT_EQ(net.positions[0][2], 1.5);
+    ASSERT_EQ(cache.entries.size(), 1u);
+    EXPECT_EQ(cache.entries[0].corner[0], 2.0);
+    net.positions[0] = ME::MakeVec3(2.3, 1.5, 1.5);
+  }
+}
+
 TEST(SurfaceNetsImageToMeshFilter, VoxelRangeAgreesExactlyWithTheDoubleComparison)
 {
   // The classification compares voxels in their own type; the bounds must give
