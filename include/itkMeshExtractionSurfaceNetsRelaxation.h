@@ -363,11 +363,13 @@ ConstrainToBox(const Vec3 & p, const Vec3 & d, const Vec3 & lower, const Vec3 & 
   return d * std::max(t, 0.0);
 }
 
-/** What RelaxSurfaceNet reads of each node in an iteration: its cell's trilinear
- * value and (central differences) gradient fields as coefficients, its box and
- * its cell's corner. Passed to several RelaxSurfaceNet calls on one net (the same
- * nodes, cells, image and gradient method, as in the high-quality mode's rounds),
- * it is made once and only the boxes are refreshed. \ingroup MeshExtraction */
+/** What RelaxSurfaceNet reads of each node in an iteration: the trilinear value and
+ * (central differences) gradient fields of a cell as coefficients, that cell's
+ * corner, and the node's box. The cell is the node's own, or with central
+ * differences the one it was last found in when its box lets it leave its own.
+ * Passed to several RelaxSurfaceNet calls on one net (the same nodes, cells, image
+ * and gradient method, as in the high-quality mode's rounds), it is made once and
+ * only the boxes are refreshed. \ingroup MeshExtraction */
 struct SurfaceNetsCellCache
 {
   struct Entry
@@ -644,8 +646,8 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   };
 
   // A node's value I, gradient G = dI/d(index) and the trilinear field's exact
-  // derivative dI at p, from its cell's cache; false (nothing computed) without a
-  // cache or when p is outside the node's cell.
+  // derivative dI at p, from the node's cache entry; false (nothing computed)
+  // without a cache or when p is outside the entry's cell.
   struct CellSample
   {
     double value;
@@ -747,7 +749,7 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     return std::clamp((parameters.isoValue - value) / slope, -cellDiagonal, cellDiagonal);
   };
 
-  // The combined step (eq. 3.5-3.6) of a node inside its own cell, from the cache,
+  // The combined step (eq. 3.5-3.6) of a node inside its entry's cell, from the cache,
   // without normalising the gradient. With n = g/|g|, the projection on the tangent
   // plane is M^-1 (M a - n n.(M a)) = a - t (G.a)/|g|^2, since n.(M a) = (M^T g).a/|g|
   // = G.a/|g|; and the step to the iso-surface, M^-1 (n d) with d = (iso - I)/slope and
