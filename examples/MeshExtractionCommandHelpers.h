@@ -18,15 +18,73 @@
 #ifndef MeshExtractionCommandHelpers_h
 #define MeshExtractionCommandHelpers_h
 
-// Helpers shared by the meshextraction subcommands: error text, phantom grids.
+// Helpers shared by the meshextraction subcommands: error text, option name tables,
+// phantom grids.
 
 #include "MeshExtractionCommandLine.h"
 #include "MeshExtractionIO.h"
 #include "itkMeshExtractionPhantoms.h"
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace MeshExtractionCLI
 {
 namespace ME = itk::MeshExtraction;
+
+/** The names an option accepts, each with its value. */
+template <typename T>
+using OptionNames = std::vector<std::pair<std::string, T>>;
+
+/** The names of `table` joined as "a, b or c" (or "a|b|c" with `bars`). */
+template <typename T>
+std::string
+OptionChoices(const OptionNames<T> & table, bool bars = false)
+{
+  std::string list;
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    list += (i == 0 ? "" : (bars ? "|" : (i + 1 == table.size() ? " or " : ", "))) + table[i].first;
+  }
+  return list;
+}
+
+/** The name of `value` in `table`. */
+template <typename T>
+std::string
+OptionName(const OptionNames<T> & table, T value)
+{
+  for (const auto & entry : table)
+  {
+    if (entry.second == value)
+    {
+      return entry.first;
+    }
+  }
+  return "";
+}
+
+/** The value of `--name` in `table`, or `fallback`. */
+template <typename T>
+T
+ChooseOption(const Arguments & args, const std::string & name, const OptionNames<T> & table, T fallback)
+{
+  if (!args.Has(name))
+  {
+    return fallback;
+  }
+  const std::string value = args.Get(name);
+  for (const auto & entry : table)
+  {
+    if (entry.first == value)
+    {
+      return entry.second;
+    }
+  }
+  throw UsageError("--" + name + " must be " + OptionChoices(table) + ", got '" + value + "'");
+}
+
 
 /** An ITK exception's description without ITK's "ITK ERROR: Class(0x...): " prefix. */
 inline std::string

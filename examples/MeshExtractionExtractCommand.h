@@ -83,23 +83,15 @@ ExtractDefaults()
 }
 
 /** The names --triangulation takes, with the filter's setting each names. */
-constexpr std::pair<const char *, SurfaceNetsEnums::Triangulation> TriangulationNames[] = {
-  { "shortest", SurfaceNetsEnums::Triangulation::ShortestDiagonal },
-  { "delaunay", SurfaceNetsEnums::Triangulation::Delaunay },
-  { "quads", SurfaceNetsEnums::Triangulation::Quadrilaterals },
-};
-
-inline std::string
-TriangulationName(SurfaceNetsEnums::Triangulation triangulation)
+inline const OptionNames<SurfaceNetsEnums::Triangulation> &
+TriangulationNames()
 {
-  for (const auto & entry : TriangulationNames)
-  {
-    if (entry.second == triangulation)
-    {
-      return entry.first;
-    }
-  }
-  return "";
+  static const OptionNames<SurfaceNetsEnums::Triangulation> table = {
+    { "shortest", SurfaceNetsEnums::Triangulation::ShortestDiagonal },
+    { "delaunay", SurfaceNetsEnums::Triangulation::Delaunay },
+    { "quads", SurfaceNetsEnums::Triangulation::Quadrilaterals },
+  };
+  return table;
 }
 
 inline SurfaceNetsEnums::Relaxation
@@ -252,18 +244,7 @@ RunExtract(const Arguments & args)
     throw UsageError("--iterations must be >= 0");
   }
   s.iterations = static_cast<unsigned int>(iterations);
-  if (args.Has("triangulation"))
-  {
-    const std::string triangulation = args.Get("triangulation");
-    const auto        named = std::find_if(std::begin(TriangulationNames),
-                                    std::end(TriangulationNames),
-                                    [&triangulation](const auto & entry) { return triangulation == entry.first; });
-    if (named == std::end(TriangulationNames))
-    {
-      throw UsageError("--triangulation must be shortest, delaunay or quads, got '" + triangulation + "'");
-    }
-    s.triangulation = named->second;
-  }
+  s.triangulation = ChooseOption(args, "triangulation", TriangulationNames(), s.triangulation);
   if (args.Has("sigma"))
   {
     s.gradient = SurfaceNetsEnums::Gradient::GaussianDerivative;
@@ -377,7 +358,10 @@ MakeExtractCommand()
     { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
     { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
     { "iterations", "N", "maximum relaxation iterations", DefaultText(defaults.iterations) },
-    { "triangulation", "MODE", "shortest, delaunay or quads", TriangulationName(defaults.triangulation) },
+    { "triangulation",
+      "MODE",
+      OptionChoices(TriangulationNames()),
+      OptionName(TriangulationNames(), defaults.triangulation) },
     { "sigma", "MM", "Gaussian-derivative gradients of this scale instead of central differences", "" },
     { "quality",
       "standard|high",
