@@ -106,7 +106,8 @@ MeshExtraction_EXPORT std::size_t
 /** After nodes moved from `start` to `positions` (continuous index), pull back the
  * nodes of triangles that flipped against their orientation at `start`, became
  * degenerate (q_area <= tolerance, measured in millimetres), fold against a
- * neighbour where they did not at `start`, or intersect another triangle: halve
+ * neighbour where they did not at `start` (or fold more sharply where they did), or
+ * intersect another triangle: halve
  * their move once, then reset it, until no such triangle is left. Checks run on the
  * physical positions that will be written (`roundToFloat`). Returns the number of
  * nodes pulled back. `tree`: as for UndoIntersectingSwaps (built once, then refitted);

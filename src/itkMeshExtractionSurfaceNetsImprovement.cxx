@@ -481,6 +481,10 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
   auto folded = [](const FaceNormal & n, const FaceNormal & m) {
     return Dot(n.normal, m.normal) < FoldCosine * n.length * m.length;
   };
+  // The cosine of the angle between the normals went down (both as n.m / (|n| |m|)).
+  auto foldClosed = [](const FaceNormal & n0, const FaceNormal & m0, const FaceNormal & n, const FaceNormal & m) {
+    return Dot(n.normal, m.normal) * n0.length * m0.length < Dot(n0.normal, m0.normal) * n.length * m.length;
+  };
   std::vector<std::uint8_t> foldedAtStart(numberOfTriangles, 0);
   IndexedTriangleMesh       check;
   check.triangles = triangles;
@@ -594,12 +598,12 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
         }
         for (unsigned int k = 0; k < 3; ++k)
         {
-          if ((foldedAtStart[f] >> k) & 1u)
-          {
-            continue;
-          }
           const std::uint32_t g = mesh.twin[3 * f + k] / 3;
-          if (folded(normals[f], normals[g]))
+          // A new fold, or a fold at `start` that closed further: left alone, the
+          // faces of a fold can close onto each other (two nodes with the same
+          // 1-ring, pulled to one point, leave a component of no volume).
+          if (((foldedAtStart[f] >> k) & 1u) ? foldClosed(startNormals[f], startNormals[g], normals[f], normals[g])
+                                             : folded(normals[f], normals[g]))
           {
             const auto & u = triangles[g];
             bad.insert(bad.end(), t.begin(), t.end());

@@ -29,6 +29,7 @@
 #include <string>
 #include <map>
 #include <random>
+#include <vector>
 
 /** Fixtures shared by the GoogleTest suites: small closed and open meshes built
  * in code, in the module's flat form, and converted to ITK meshes. */
@@ -161,6 +162,119 @@ ReadSharedHeadCT(std::string & path)
     buffer[i] = static_cast<short>(
       (static_cast<unsigned char>(bytes[2 * i]) | (static_cast<unsigned char>(bytes[2 * i + 1]) << 8)) & 0x7fff);
   }
+  return image;
+}
+
+/** A smooth random volume for stress tests: the sum of 1 to 8 Gaussian blobs, sheets
+ * and tubes of random width, sign, position and direction, with noise on about half
+ * of them, on a grid of 10 to 31 voxels a side. Seeds 2 and 3 modulo 4 get anisotropic
+ * spacing (0.6 to 1.4 mm), seeds 3 modulo 4 a rotated direction too. `iso` receives an
+ * iso-value between 0.2 and 0.7 (the object is above it). Only std::mt19937's raw
+ * output is used, so every standard library gives the same volume (up to libm's
+ * exp, log and cos in the last bits). */
+inline itk::Image<float, 3>::Pointer
+MakeRandomSmoothVolume(unsigned int seed, double & iso)
+{
+  using ImageType = itk::Image<float, 3>;
+  std::mt19937 rng(seed);
+  auto         uniform = [&rng]() { return static_cast<double>(rng() >> 5) * (1.0 / 134217728.0); }; // [0, 1)
+  const double pi = 3.14159265358979323846;
+  unsigned int n[3];
+  for (auto & side : n)
+  {
+    side = 10u + static_cast<unsigned int>(uniform() * 22);
+  }
+  auto                     image = ImageType::New();
+  ImageType::SizeType      size = { { n[0], n[1], n[2] } };
+  ImageType::SpacingType   spacing(1.0);
+  ImageType::DirectionType direction;
+  direction.SetIdentity();
+  if (seed % 4 >= 2)
+  {
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      spacing[d] = 0.6 + 0.8 * uniform();
+    }
+  }
+  if (seed % 4 == 3)
+  {
+    // Rotations about z, y and x by random angles.
+    const double             a = 3 * uniform(), b = 3 * uniform(), c = 3 * uniform();
+    ImageType::DirectionType rz, ry, rx;
+    rz.SetIdentity();
+    ry.SetIdentity();
+    rx.SetIdentity();
+    rz(0, 0) = std::cos(a), rz(0, 1) = -std::sin(a), rz(1, 0) = std::sin(a), rz(1, 1) = std::cos(a);
+    ry(0, 0) = std::cos(b), ry(0, 2) = std::sin(b), ry(2, 0) = -std::sin(b), ry(2, 2) = std::cos(b);
+    rx(1, 1) = std::cos(c), rx(1, 2) = -std::sin(c), rx(2, 1) = std::sin(c), rx(2, 2) = std::cos(c);
+    direction = rz * ry * rx;
+  }
+  image->SetRegions(size);
+  image->SetSpacing(spacing);
+  image->SetDirection(direction);
+  image->Allocate();
+  struct Shape
+  {
+    double center[3];
+    double width;
+    double weight;
+    int    kind; // 0 blob, 1 sheet, 2 tube
+    double axis[3];
+  };
+  std::vector<Shape> shapes(1 + static_cast<std::size_t>(uniform() * 8));
+  for (auto & s : shapes)
+  {
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      s.center[d] = uniform() * n[d];
+    }
+    s.width = 0.7 + 5.0 * uniform();
+    s.weight = (uniform() < 0.75 ? 1.0 : -1.0) * (0.5 + uniform());
+    s.kind = static_cast<int>(uniform() * 3);
+    double length = 1e-9;
+    for (auto & a : s.axis)
+    {
+      a = uniform() - 0.5;
+      length += a * a;
+    }
+    for (auto & a : s.axis)
+    {
+      a /= std::sqrt(length);
+    }
+  }
+  const double noise = uniform() < 0.5 ? 0.0 : 0.3 * uniform();
+  float *      voxel = image->GetBufferPointer();
+  for (unsigned int z = 0; z < n[2]; ++z)
+  {
+    for (unsigned int y = 0; y < n[1]; ++y)
+    {
+      for (unsigned int x = 0; x < n[0]; ++x)
+      {
+        const double p[3] = { static_cast<double>(x), static_cast<double>(y), static_cast<double>(z) };
+        double       v = 0.0;
+        for (const auto & s : shapes)
+        {
+          double along = 0.0;
+          double r2 = 0.0;
+          for (unsigned int d = 0; d < 3; ++d)
+          {
+            along += (p[d] - s.center[d]) * s.axis[d];
+            r2 += (p[d] - s.center[d]) * (p[d] - s.center[d]);
+          }
+          const double d2 = s.kind == 0 ? r2 : s.kind == 1 ? 4.0 * along * along : r2 - along * along;
+          v += s.weight * std::exp(-d2 / (2.0 * s.width * s.width));
+        }
+        if (noise > 0.0)
+        {
+          // Box-Muller.
+          const double u = 1.0 - uniform();
+          v += noise * std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * pi * uniform());
+        }
+        *voxel++ = static_cast<float>(v);
+      }
+    }
+  }
+  iso = 0.2 + 0.5 * uniform();
   return image;
 }
 
