@@ -87,32 +87,58 @@ EdgeKey(std::uint32_t u, std::uint32_t v)
   return (static_cast<std::uint64_t>(std::min(u, v)) << 32) | std::max(u, v);
 }
 
+/** \brief The signed volume of each component of a closed mesh (positive for an outer
+ * surface, negative for a cavity's), measured where the high-quality mode starts.
+ *
+ * A component of a few triangles (a voxel on its own, a few nodes across) can turn
+ * inside out, or close onto itself, in one move or swap while none of its faces
+ * flips, folds or crosses another at the end of it; its volume tells. The components
+ * are those of the vertices, which swaps and moves do not change.
+ * \ingroup MeshExtraction */
+struct MeshExtraction_EXPORT ComponentVolumes
+{
+  std::vector<std::uint32_t> vertexComponent; ///< component of each vertex (the largest uint32 if in no triangle)
+  std::vector<Vec3>          origin;          ///< per component: a vertex's start position, to measure from
+  std::vector<double>        reference;       ///< per component: 6 x the signed volume at the start
+
+  /** Labels the components of `triangles` and measures their volumes at `points`. */
+  void
+  Initialize(const std::vector<TriangleIndices> & triangles, const std::vector<Vec3> & points);
+  /** True for each component whose volume at `points` has another sign than its
+   * reference or less than a quarter of its magnitude (none if not initialised). */
+  std::vector<bool>
+  Collapsed(const std::vector<TriangleIndices> & triangles, const std::vector<Vec3> & points) const;
+};
+
 /** A fold: two triangles sharing an edge whose normals make more than 120 degrees.
  * Neither needs to have flipped on its own, yet the surface doubles back. */
 constexpr double FoldCosine = -0.5;
 
 /** Undo swaps whose triangles intersect other triangles or fold against a
- * neighbour, until none does; their edges are added to `refused` (kept sorted) so
- * later sweeps do not try them again. Returns the number of swaps undone. With
- * `tree` (the same one on every call for one mesh), its shape is built once and
- * refitted afterwards (TriangleAABBTree::Refit), which PullBackInvalidMoves shares. */
+ * neighbour, or that leave their component collapsed (`volumes`, if given), until
+ * none does; their edges are added to `refused` (kept sorted) so later sweeps do not
+ * try them again. Returns the number of swaps undone. With `tree` (the same one on
+ * every call for one mesh), its shape is built once and refitted afterwards
+ * (TriangleAABBTree::Refit), which PullBackInvalidMoves shares. */
 MeshExtraction_EXPORT std::size_t
                       UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
                                             SurfaceNetTriangles &         mesh,
                                             std::vector<EdgeSwapRecord> & swaps,
                                             std::vector<std::uint64_t> *  refused = nullptr,
-                                            TriangleAABBTree *            tree = nullptr);
+                                            TriangleAABBTree *            tree = nullptr,
+                                            const ComponentVolumes *      volumes = nullptr);
 
 /** After nodes moved from `start` to `positions` (continuous index), pull back the
  * nodes of triangles that flipped against their orientation at `start`, became
  * degenerate (q_area <= tolerance, measured in millimetres), fold against a
  * neighbour where they did not at `start` (or fold more sharply where they did), or
- * intersect another triangle: halve
- * their move once, then reset it, until no such triangle is left. Checks run on the
- * physical positions that will be written (`roundToFloat`). Returns the number of
- * nodes pulled back. `tree`: as for UndoIntersectingSwaps (built once, then refitted);
- * `cache`: kept between the calls for one mesh, so that a check after small moves
- * tests only what may have changed (SelfIntersectionCache; same result). */
+ * intersect another triangle, and the moved nodes of components that collapsed
+ * (`volumes`, if given): halve their move once, then reset it, until no such
+ * triangle or component is left. Checks run on the physical positions that will be
+ * written (`roundToFloat`). Returns the number of nodes pulled back. `tree`: as for
+ * UndoIntersectingSwaps (built once, then refitted); `cache`: kept between the calls
+ * for one mesh, so that a check after small moves tests only what may have changed
+ * (SelfIntersectionCache; same result). */
 MeshExtraction_EXPORT std::size_t
                       PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
                                            const LargeBlockVector<Vec3> & start,
@@ -122,7 +148,8 @@ MeshExtraction_EXPORT std::size_t
                                            double                         degenerateQAreaTolerance,
                                            bool                           roundToFloat = false,
                                            TriangleAABBTree *             tree = nullptr,
-                                           SelfIntersectionCache *        cache = nullptr);
+                                           SelfIntersectionCache *        cache = nullptr,
+                                           const ComponentVolumes *       volumes = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

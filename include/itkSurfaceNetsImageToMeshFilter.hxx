@@ -292,6 +292,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   std::vector<std::uint64_t> refused; // edges whose swap had to be undone
   TriangleAABBTree           tree;    // one shape for every check below, refitted
   SelfIntersectionCache      cache;   // what the checks after small moves may skip
+  ComponentVolumes           volumes; // no component may turn inside out or flatten
+  volumes.Initialize(mesh.triangles, ToPhysical(m_Net.positions, first, M, roundToFloat));
   // Relax, then undo moves that would break the mesh. A node pulled back is held
   // still in later rounds: it is where the mesh is tight (thin or sharp parts).
   auto relaxAndCheck = [&](unsigned int iterations) {
@@ -307,7 +309,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
     }
     const LargeBlockVector<Vec3> before = m_Net.positions;
     m_NumberOfNodesMovedBack +=
-      PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat, &tree, &cache);
+      PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat, &tree, &cache, &volumes);
     for (std::size_t i = 0; i < start.size(); ++i)
     {
       if (m_Net.positions[i] != before[i])
@@ -322,7 +324,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   {
     const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
     auto                    swaps = SwapEdges(physical, mesh, swap, &refused);
-    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
+    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree, &volumes);
     m_NumberOfSwaps += swaps.size();
     const bool converged = swaps.empty() || static_cast<double>(swaps.size()) <
                                               m_ConvergedSwapFraction * static_cast<double>(mesh.triangles.size());
@@ -351,7 +353,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   {
     const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
     auto                    swaps = SwapEdges(physical, mesh, delaunay, &refused);
-    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree);
+    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree, &volumes);
     m_NumberOfSwaps += swaps.size();
     if (swaps.empty())
     {

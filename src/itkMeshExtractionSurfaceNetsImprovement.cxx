@@ -317,12 +317,87 @@ SwapEdges(const std::vector<Vec3> &          physical,
   return records;
 }
 
+void
+ComponentVolumes::Initialize(const std::vector<TriangleIndices> & triangles, const std::vector<Vec3> & points)
+{
+  // Union-find over the vertices, joined along the triangles' edges.
+  std::vector<std::uint32_t> parent(points.size());
+  std::iota(parent.begin(), parent.end(), std::uint32_t{ 0 });
+  auto find = [&parent](std::uint32_t v) {
+    while (parent[v] != v)
+    {
+      parent[v] = parent[parent[v]];
+      v = parent[v];
+    }
+    return v;
+  };
+  for (const auto & t : triangles)
+  {
+    for (unsigned int k = 0; k < 2; ++k)
+    {
+      const std::uint32_t a = find(t[k]);
+      const std::uint32_t b = find(t[k + 1]);
+      if (a != b)
+      {
+        parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  }
+  vertexComponent.assign(points.size(), None);
+  origin.clear();
+  std::vector<std::uint32_t> label(points.size(), None);
+  for (const auto & t : triangles)
+  {
+    for (std::uint32_t v : t)
+    {
+      const std::uint32_t root = find(v);
+      if (label[root] == None)
+      {
+        label[root] = static_cast<std::uint32_t>(origin.size());
+        origin.push_back(points[v]);
+      }
+      vertexComponent[v] = label[root];
+    }
+  }
+  reference.assign(origin.size(), 0.0);
+  for (const auto & t : triangles)
+  {
+    const std::uint32_t c = vertexComponent[t[0]];
+    const Vec3 &        o = origin[c];
+    reference[c] += Dot(points[t[0]] - o, Cross(points[t[1]] - o, points[t[2]] - o));
+  }
+}
+
+std::vector<bool>
+ComponentVolumes::Collapsed(const std::vector<TriangleIndices> & triangles, const std::vector<Vec3> & points) const
+{
+  std::vector<bool> collapsed(reference.size(), false);
+  if (reference.empty())
+  {
+    return collapsed;
+  }
+  std::vector<double> volume(reference.size(), 0.0);
+  for (const auto & t : triangles)
+  {
+    const std::uint32_t c = vertexComponent[t[0]];
+    const Vec3 &        o = origin[c];
+    volume[c] += Dot(points[t[0]] - o, Cross(points[t[1]] - o, points[t[2]] - o));
+  }
+  for (std::size_t c = 0; c < reference.size(); ++c)
+  {
+    // Not (same sign and at least a quarter of the magnitude); NaN counts as collapsed.
+    collapsed[c] = !(volume[c] * reference[c] > 0.0 && std::abs(volume[c]) >= 0.25 * std::abs(reference[c]));
+  }
+  return collapsed;
+}
+
 std::size_t
 UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
                       SurfaceNetTriangles &         mesh,
                       std::vector<EdgeSwapRecord> & swaps,
                       std::vector<std::uint64_t> *  refused,
-                      TriangleAABBTree *            sharedTree)
+                      TriangleAABBTree *            sharedTree,
+                      const ComponentVolumes *      volumes)
 {
   std::size_t         undone = 0;
   IndexedTriangleMesh check;
@@ -378,6 +453,19 @@ UndoIntersectingSwaps(const std::vector<Vec3> &     physical,
         {
           bad[f] = true;
           bad[g] = true;
+          anyBad = true;
+        }
+      }
+    }
+    // Components that a swap turned inside out or flattened: their swaps are undone.
+    if (volumes != nullptr)
+    {
+      const std::vector<bool> collapsed = volumes->Collapsed(check.triangles, physical);
+      for (const auto & s : swaps)
+      {
+        if (collapsed[volumes->vertexComponent[mesh.triangles[s.first][0]]])
+        {
+          bad[s.first] = true;
           anyBad = true;
         }
       }
@@ -449,7 +537,8 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
                      double                         tolerance,
                      bool                           roundToFloat,
                      TriangleAABBTree *             sharedTree,
-                     SelfIntersectionCache *        cache)
+                     SelfIntersectionCache *        cache,
+                     const ComponentVolumes *       volumes)
 {
   const auto &           triangles = mesh.triangles;
   const std::size_t      numberOfTriangles = triangles.size();
@@ -621,6 +710,22 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
     {
       badNodes.insert(badNodes.end(), triangles[p.first].begin(), triangles[p.first].end());
       badNodes.insert(badNodes.end(), triangles[p.second].begin(), triangles[p.second].end());
+    }
+    if (volumes != nullptr)
+    {
+      // Components turned inside out or flattened: all their moved nodes.
+      const std::vector<bool> collapsed = volumes->Collapsed(triangles, check.points);
+      if (std::find(collapsed.begin(), collapsed.end(), true) != collapsed.end())
+      {
+        for (std::uint32_t v = 0; v < positions.size(); ++v)
+        {
+          const std::uint32_t c = volumes->vertexComponent[v];
+          if (c != None && collapsed[c] && positions[v] != start[v])
+          {
+            badNodes.push_back(v);
+          }
+        }
+      }
     }
     std::sort(badNodes.begin(), badNodes.end());
     badNodes.erase(std::unique(badNodes.begin(), badNodes.end()), badNodes.end());

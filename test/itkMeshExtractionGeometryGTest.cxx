@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <numeric>
 #include <chrono>
+#include <limits>
 #include <mutex>
 #include <random>
 #include <set>
@@ -662,6 +663,70 @@ TEST(SurfaceNetTriangles, ReplaceTrianglesGivesTheConnectivityOfABuildFromScratc
     { face, local.triangles[(face + local.triangles.size() / 2) % local.triangles.size()] }
   };
   EXPECT_THROW(local.ReplaceTriangles(wrong), itk::ExceptionObject);
+}
+
+TEST(ComponentVolumes, FlagAComponentThatTurnsInsideOutOrFlattensAndNoOther)
+{
+  // Three components: a sphere, a small sphere inside it turned inward (a cavity:
+  // negative volume), and a small sphere elsewhere.
+  const IndexedTriangleMesh    outer = MakeIcosphere(2, 10.0);
+  const IndexedTriangleMesh    inner = MakeIcosphere(1, 2.0, MakeVec3(1.0, 0.0, 0.0));
+  const IndexedTriangleMesh    apart = MakeIcosphere(1, 1.0, MakeVec3(20.0, 0.0, 0.0));
+  std::vector<Vec3>            points;
+  std::vector<TriangleIndices> triangles;
+  auto                         add = [&](const IndexedTriangleMesh & m, bool inward) {
+    const auto first = static_cast<std::uint32_t>(points.size());
+    points.insert(points.end(), m.points.begin(), m.points.end());
+    for (auto t : m.triangles)
+    {
+      if (inward)
+      {
+        std::swap(t[1], t[2]);
+      }
+      triangles.push_back({ t[0] + first, t[1] + first, t[2] + first });
+    }
+  };
+  add(outer, false);
+  add(inner, true);
+  add(apart, false);
+  ComponentVolumes volumes;
+  EXPECT_EQ(volumes.Collapsed(triangles, points), std::vector<bool>{}); // not initialised
+  volumes.Initialize(triangles, points);
+  ASSERT_EQ(volumes.reference.size(), 3u);
+  EXPECT_GT(volumes.reference[0], 0.0);
+  EXPECT_LT(volumes.reference[1], 0.0);
+  EXPECT_GT(volumes.reference[2], 0.0);
+  EXPECT_EQ(volumes.vertexComponent[outer.points.size()], 1u);
+  EXPECT_EQ(volumes.Collapsed(triangles, points), std::vector<bool>(3, false));
+
+  const std::size_t apartFirst = outer.points.size() + inner.points.size();
+  auto              moved = [&](double scaleZ, double mirrorX) {
+    std::vector<Vec3> p = points;
+    for (std::size_t v = apartFirst; v < p.size(); ++v)
+    {
+      const Vec3 c = MakeVec3(20.0, 0.0, 0.0);
+      Vec3       d = p[v] - c;
+      d[0] *= mirrorX;
+      d[2] *= scaleZ;
+      p[v] = c + d;
+    }
+    return volumes.Collapsed(triangles, p);
+  };
+  const std::vector<bool> onlyApart{ false, false, true };
+  EXPECT_EQ(moved(0.5, 1.0), std::vector<bool>(3, false)); // half its volume: kept
+  EXPECT_EQ(moved(0.2, 1.0), onlyApart);                   // a fifth: flattened
+  EXPECT_EQ(moved(0.0, 1.0), onlyApart);                   // no volume
+  EXPECT_EQ(moved(1.0, -1.0), onlyApart);                  // mirrored: inside out
+  // The cavity turned outward, and a NaN point.
+  std::vector<Vec3> p = points;
+  for (std::size_t v = outer.points.size(); v < apartFirst; ++v)
+  {
+    p[v] = MakeVec3(1.0, 0.0, 0.0) + (MakeVec3(1.0, 0.0, 0.0) - p[v]);
+  }
+  EXPECT_EQ(volumes.Collapsed(triangles, p), (std::vector<bool>{ false, true, false }));
+  p = points;
+  p[0][0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(volumes.Collapsed(triangles, p), (std::vector<bool>{ true, false, false }));
 }
 
 TEST(ParallelForBlocks, ScopedNumberOfWorkUnitsBoundsTheThreadsAndIsRestored)
