@@ -294,12 +294,8 @@ private:
   static Vec3
   Round(const Vec3 & x)
   {
-    Vec3 r;
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      r[d] = static_cast<double>(static_cast<CoordinateType>(x[d]));
-    }
-    return r;
+    // Not a plain static_cast round trip, which GCC 12 may drop (see RoundToCoordinateType).
+    return RoundToCoordinateType<CoordinateType>(x);
   }
 
   VertexOneRing

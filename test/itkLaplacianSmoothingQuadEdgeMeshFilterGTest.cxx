@@ -23,10 +23,12 @@
 #include "itkTriangleMeshQualityCalculator.h"
 #include "itkBinaryMask3DMeshSource.h"
 #include "itkImplicitSurfaceImageSource.h"
+#include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include "itkGTest.h"
 
 #include <functional>
+#include <numeric>
 #include <random>
 #include <sstream>
 
@@ -387,6 +389,51 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, GuardedSmoothingOfAThousandPerturbedC
   std::cout << tested << " valid perturbed meshes; the guard shortened or rejected " << guardInterventions << " moves; "
             << selfIntersecting << " guarded results intersect themselves; without the guard " << unguardedDamaged
             << " of " << (meshes + 9) / 10 << " were damaged\n";
+}
+
+TEST(LaplacianSmoothingQuadEdgeMeshFilter, GuardHoldsOnSurfaceNetsMeshesStoredInFloatCoordinates)
+{
+  // SurfaceNets meshes of smooth random volumes (MakeRandomSmoothVolume), without
+  // relaxation (nodes at cell centres: many right angles) or with SNERT, one
+  // iteration in every mode. QuadEdgeMesh<double, 3> stores float coordinates, and
+  // the guard must check the rounded positions the mesh keeps: when it checked the
+  // unrounded ones (GCC 12 dropped the round trip to float), the Immediate update
+  // of seeds 5, 65 and 125 left a triangle turned by just over 90 degrees.
+  std::vector<unsigned int> seeds(70);
+  std::iota(seeds.begin(), seeds.end(), 0u);
+  seeds.push_back(125u);
+  int tested = 0;
+  for (unsigned int seed : seeds)
+  {
+    double     iso = 0.0;
+    const auto image = MakeRandomSmoothVolume(seed, iso);
+    auto       extract = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>, QEMeshType>::New();
+    extract->SetInput(image);
+    extract->SetIsoValue(iso);
+    extract->SetRelaxation(seed % 2 ? itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::None
+                                    : itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::Combined);
+    try
+    {
+      extract->Update();
+    }
+    catch (const itk::ExceptionObject &)
+    {
+      continue; // nothing inside or nothing outside
+    }
+    ++tested;
+    const QEMeshType::Pointer input = extract->GetOutput();
+    auto                      filter = LaplacianType::New();
+    filter->SetInput(input);
+    filter->SetWeights(AllWeights[seed % 5]);
+    filter->SetUpdateMode((seed / 5) % 2 ? Update::Immediate : Update::Batch);
+    filter->SetMovementConstraint(static_cast<Constraint>((seed / 10) % 3));
+    filter->Update();
+    const auto report = Analyze<QEMeshType>(filter->GetOutput(), input, false);
+    EXPECT_EQ(report.invertedTrianglesVersusReference, 0) << "seed " << seed;
+    EXPECT_EQ(report.degenerateTriangles, 0) << "seed " << seed;
+    EXPECT_TRUE(report.IsClosed() && report.IsManifold() && report.IsConsistentlyOriented()) << "seed " << seed;
+  }
+  EXPECT_GE(tested, 65);
 }
 
 // ------------------------------------------------------------------------------
