@@ -219,6 +219,13 @@ RunImprove(const Arguments & args)
     std::cout << "edge swap (" << args.Get("swap") << "): " << filter->GetNumberOfSwaps() << " swaps in "
               << filter->GetNumberOfIterations() << " passes, " << filter->GetNumberOfRefusedSwaps()
               << " improving swaps refused by the validity checks\n";
+    if (filter->GetNumberOfCrossingTriangles() > 0)
+    {
+      std::cout << "  " << filter->GetNumberOfCrossingTriangles()
+                << " new triangles cut through the surface: their corners were locked and the swaps made again ("
+                << filter->GetNumberOfAttempts() << " attempts"
+                << (filter->GetKeptInput() ? "; they still crossed, so the mesh was kept unswapped" : "") << ")\n";
+    }
     mesh = filter->GetOutput();
     mesh->DisconnectPipeline();
   }

@@ -66,8 +66,14 @@ namespace itk
  * Only internal edges between two triangles are candidates; boundary edges stay.
  * Edges next to a locked point (SetLockedPoints: an edge whose two triangles have a
  * locked corner) are not swapped either, so the triangles around those points stay
- * as they are; ScaleSpaceEdgeMeshRefinementFilter locks the places where a swap made
- * the surface cut through itself and swaps again.
+ * as they are.
+ *
+ * The checks above are local: on a rough surface a new triangle can still cut through
+ * a nearby part of the surface. With PreventSelfIntersections (default on; beyond the
+ * thesis) the new triangles are searched for crossings once the passes end (exact
+ * test, MeshExtraction::FindSelfIntersections); the corners of those that cross are
+ * locked and the passes run again from the input, up to 8 times, after which the
+ * input is kept unswapped. The output then crosses itself nowhere the input did not.
  * Points keep their identifiers, positions and point data; faces are re-created by
  * the swaps, so face identifiers change and face (cell) data does not follow them.
  *
@@ -125,6 +131,12 @@ public:
   itkSetMacro(MinimumQAreaRatio, double);
   itkGetConstMacro(MinimumQAreaRatio, double);
 
+  /** Undo swaps whose triangles cut through the surface (default on; see the class
+   * documentation). */
+  itkSetMacro(PreventSelfIntersections, bool);
+  itkGetConstMacro(PreventSelfIntersections, bool);
+  itkBooleanMacro(PreventSelfIntersections);
+
   /** Points around which no edge is swapped (default none). Identifiers that are not
    * points of the mesh are ignored. */
   void
@@ -145,6 +157,12 @@ public:
   itkGetConstMacro(NumberOfSwaps, SizeValueType);
   itkGetConstMacro(NumberOfRefusedSwaps, SizeValueType);
   itkGetConstMacro(NumberOfIterations, int);
+  /** With PreventSelfIntersections: new triangles found crossing the surface (over all
+   * attempts), the attempts made (1 if none crossed), and whether the last attempt
+   * still crossed, so that the input was kept. */
+  itkGetConstMacro(NumberOfCrossingTriangles, SizeValueType);
+  itkGetConstMacro(NumberOfAttempts, unsigned int);
+  itkGetConstMacro(KeptInput, bool);
 
 protected:
   EdgeSwapQuadEdgeMeshFilter() = default;
@@ -170,8 +188,14 @@ private:
   double                m_DegenerateQAreaTolerance{ 1e-4 };
   double                m_MinimumQAreaRatio{ 0.0 };
 
-  std::vector<OutputPointIdentifier> m_LockedPoints;
+  bool m_PreventSelfIntersections{ true };
 
+  std::vector<OutputPointIdentifier> m_LockedPoints;
+  std::vector<OutputPointIdentifier> m_CrossingLockedPoints; ///< sorted; locked by PreventSelfIntersections
+
+  SizeValueType m_NumberOfCrossingTriangles{ 0 };
+  unsigned int  m_NumberOfAttempts{ 0 };
+  bool          m_KeptInput{ false };
   SizeValueType m_NumberOfSwaps{ 0 };
   SizeValueType m_NumberOfRefusedSwaps{ 0 };
   int           m_NumberOfIterations{ 0 };

@@ -19,7 +19,9 @@
 #define itkEdgeSwapQuadEdgeMeshFilter_hxx
 
 #include "itkEdgeSwapQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionParallel.h"
+#include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionQuadEdgeMeshVertexSmoother.h"
 
 #include <algorithm>
@@ -87,7 +89,8 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
   std::sort(edges.begin(), edges.end());
 
   auto IsLocked = [this](OutputPointIdentifier p) {
-    return std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), p);
+    return std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), p) ||
+           std::binary_search(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end(), p);
   };
   // Valences and boundary flags once per pass (walking a point's edge ring through
   // the quad-edge structure is slow), kept up to date as edges are swapped: a swap
@@ -118,7 +121,8 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
     const OutputPointIdentifier b = e->GetDestination();
     const OutputPointIdentifier c = e->GetLnext()->GetDestination();
     const OutputPointIdentifier d = e->GetSym()->GetLnext()->GetDestination();
-    if (!m_LockedPoints.empty() && (IsLocked(a) || IsLocked(b) || IsLocked(c) || IsLocked(d)))
+    if ((!m_LockedPoints.empty() || !m_CrossingLockedPoints.empty()) &&
+        (IsLocked(a) || IsLocked(b) || IsLocked(c) || IsLocked(d)))
     {
       continue;
     }
@@ -201,7 +205,10 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
     itkExceptionMacro(<< nonTriangle);
   }
 
-  this->CopyInputMeshToOutputMesh();
+  m_NumberOfCrossingTriangles = 0;
+  m_NumberOfAttempts = 0;
+  m_KeptInput = false;
+  m_CrossingLockedPoints.clear();
   OutputMeshType * output = this->GetOutput();
 
   MeshExtraction::EdgeSwapParameters parameters;
@@ -211,17 +218,107 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   parameters.degenerateQAreaTolerance = m_DegenerateQAreaTolerance;
   parameters.minimumQAreaRatio = m_MinimumQAreaRatio;
 
-  this->UpdateProgress(0.0f);
-  for (int pass = 0; pass < m_MaximumNumberOfIterations; ++pass)
+  // The input's edges, by point identifiers: a triangle with another edge is new.
+  using Edge = std::pair<OutputPointIdentifier, OutputPointIdentifier>;
+  std::vector<Edge> inputEdges;
+  if (m_PreventSelfIntersections)
   {
-    const SizeValueType swaps = this->SwapPass(output, parameters);
-    m_NumberOfSwaps += swaps;
-    ++m_NumberOfIterations;
-    this->UpdateProgress(static_cast<float>(pass + 1) / static_cast<float>(m_MaximumNumberOfIterations));
-    if (swaps == 0)
+    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*input);
+    for (const auto & t : indexed.triangles)
+    {
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        const OutputPointIdentifier a = indexed.pointIds[t[k]];
+        const OutputPointIdentifier b = indexed.pointIds[t[(k + 1) % 3]];
+        inputEdges.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    }
+    std::sort(inputEdges.begin(), inputEdges.end());
+    inputEdges.erase(std::unique(inputEdges.begin(), inputEdges.end()), inputEdges.end());
+  }
+  constexpr unsigned int MaximumNumberOfAttempts = 8;
+  this->UpdateProgress(0.0f);
+  for (unsigned int attempt = 0; attempt < MaximumNumberOfAttempts; ++attempt)
+  {
+    if (attempt > 0)
+    {
+      output->Initialize(); // the copy adds to what the output holds
+    }
+    this->CopyInputMeshToOutputMesh();
+    m_NumberOfSwaps = 0;
+    m_NumberOfRefusedSwaps = 0;
+    m_NumberOfIterations = 0;
+    ++m_NumberOfAttempts;
+    for (int pass = 0; pass < m_MaximumNumberOfIterations; ++pass)
+    {
+      const SizeValueType swaps = this->SwapPass(output, parameters);
+      m_NumberOfSwaps += swaps;
+      ++m_NumberOfIterations;
+      this->UpdateProgress(static_cast<float>(pass + 1) / static_cast<float>(m_MaximumNumberOfIterations));
+      if (swaps == 0)
+      {
+        break;
+      }
+    }
+    if (!m_PreventSelfIntersections || m_NumberOfSwaps == 0)
     {
       break;
     }
+    // New triangles that cross another triangle: lock their corners and start again.
+    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*output);
+    std::vector<std::uint8_t>                 isNew(indexed.triangles.size(), 0);
+    std::vector<std::uint32_t>                queries;
+    for (std::uint32_t f = 0; f < indexed.triangles.size(); ++f)
+    {
+      const auto & t = indexed.triangles[f];
+      for (unsigned int k = 0; k < 3 && !isNew[f]; ++k)
+      {
+        const OutputPointIdentifier a = indexed.pointIds[t[k]];
+        const OutputPointIdentifier b = indexed.pointIds[t[(k + 1) % 3]];
+        isNew[f] =
+          std::binary_search(inputEdges.begin(), inputEdges.end(), Edge(std::min(a, b), std::max(a, b))) ? 0 : 1;
+      }
+      if (isNew[f])
+      {
+        queries.push_back(f);
+      }
+    }
+    std::vector<std::uint32_t> crossing;
+    for (const auto & pair : MeshExtraction::FindSelfIntersections(indexed, &queries))
+    {
+      for (const std::uint32_t f : { pair.first, pair.second })
+      {
+        if (isNew[f])
+        {
+          crossing.push_back(f);
+        }
+      }
+    }
+    std::sort(crossing.begin(), crossing.end());
+    crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+    m_NumberOfCrossingTriangles += crossing.size();
+    if (crossing.empty())
+    {
+      break;
+    }
+    if (attempt + 1 == MaximumNumberOfAttempts)
+    {
+      output->Initialize(); // still crossing: keep the input
+      this->CopyInputMeshToOutputMesh();
+      m_NumberOfSwaps = 0;
+      m_KeptInput = true;
+      break;
+    }
+    for (const std::uint32_t f : crossing)
+    {
+      for (const std::uint32_t v : indexed.triangles[f])
+      {
+        m_CrossingLockedPoints.push_back(indexed.pointIds[v]);
+      }
+    }
+    std::sort(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end());
+    m_CrossingLockedPoints.erase(std::unique(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end()),
+                                 m_CrossingLockedPoints.end());
   }
   this->UpdateProgress(1.0f);
 }
@@ -236,10 +333,14 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::PrintSelf(std::ostream & os
   os << indent << "FeatureAngle: " << m_FeatureAngle << std::endl;
   os << indent << "DegenerateQAreaTolerance: " << m_DegenerateQAreaTolerance << std::endl;
   os << indent << "MinimumQAreaRatio: " << m_MinimumQAreaRatio << std::endl;
+  os << indent << "PreventSelfIntersections: " << (m_PreventSelfIntersections ? "On" : "Off") << std::endl;
   os << indent << "LockedPoints: " << m_LockedPoints.size() << std::endl;
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << std::endl;
   os << indent << "NumberOfRefusedSwaps: " << m_NumberOfRefusedSwaps << std::endl;
   os << indent << "NumberOfIterations: " << m_NumberOfIterations << std::endl;
+  os << indent << "NumberOfCrossingTriangles: " << m_NumberOfCrossingTriangles << std::endl;
+  os << indent << "NumberOfAttempts: " << m_NumberOfAttempts << std::endl;
+  os << indent << "KeptInput: " << (m_KeptInput ? "true" : "false") << std::endl;
 }
 } // namespace itk
 

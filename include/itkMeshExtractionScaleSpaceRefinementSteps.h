@@ -56,9 +56,8 @@ struct ScaleSpaceRefinementStep
   /** ED: vertices moved; ES: edges swapped (and kept); S: vertices moved. */
   std::int64_t changes{ -1 };
   /** ED, S: moves the no-inversion guard rejected plus moves undone because they
-   * folded the surface; ES: new triangles that cut through the surface, whose
-   * corners were then locked before swapping again (all swaps if the ES was
-   * dropped). */
+   * folded the surface; ES: new triangles that cut through the surface (undone, or
+   * their corners locked before swapping again). */
   std::int64_t rejectedMoves{ -1 };
   /** ED: largest vertex displacement; S: largest distance of a vertex from its
    * position after the last ED (the travel that ends a cycle), mm. */

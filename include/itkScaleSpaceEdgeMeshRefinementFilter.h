@@ -81,9 +81,10 @@ namespace itk
  * (MeshExtraction::UndoFoldingMoves, exact intersection tests, signed volumes), and
  * after each ES the swaps whose new triangles intersect the surface or fold against
  * a neighbour are undone and not tried again (closed surfaces), or the corners of
- * those triangles are locked and the swaps made again from the mesh before the ES (at
- * most five attempts, then the ES is dropped; other meshes); the step table counts
- * them with the rejected moves.
+ * those triangles are locked and the swaps made again from the mesh before the ES
+ * (EdgeSwapQuadEdgeMeshFilter's PreventSelfIntersections: at most eight attempts,
+ * then the ES is dropped; other meshes); the step table counts them with the
+ * rejected moves.
  *
  * The output has the input's point identifiers; faces are re-created by the swaps.
  * The input must be a triangle mesh inside the image; a missing image, an empty mesh,
@@ -221,7 +222,7 @@ protected:
   /** ES on a closed 2-manifold: the indexed swap engine (fast). */
   void
   ClosedSurfaceEdgeSwap(unsigned int cycle);
-  /** ES on any other mesh: EdgeSwapQuadEdgeMeshFilter, cutting swaps redone with locked points. */
+  /** ES on any other mesh: EdgeSwapQuadEdgeMeshFilter, which redoes cutting swaps with locked points. */
   void
   QuadEdgeEdgeSwap(unsigned int cycle);
   /** Returns the travel since the last ED. */

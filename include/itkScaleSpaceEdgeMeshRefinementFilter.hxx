@@ -28,7 +28,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <set>
 #include <utility>
 
 namespace itk
@@ -233,91 +232,26 @@ template <typename TInputMesh, typename TImage, typename TOutputMesh>
 void
 ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::QuadEdgeEdgeSwap(unsigned int cycle)
 {
-  using Edge = std::pair<std::uint32_t, std::uint32_t>;
-  auto           key = [](std::uint32_t a, std::uint32_t b) { return a < b ? Edge(a, b) : Edge(b, a); };
-  const auto     start = std::chrono::steady_clock::now();
-  std::set<Edge> before;
-  for (const auto & t : m_Triangles)
-  {
-    for (unsigned int k = 0; k < 3; ++k)
-    {
-      before.insert(key(t[k], t[(k + 1) % 3]));
-    }
-  }
-  // EdgeSwapQuadEdgeMeshFilter checks each swap locally; on a rough surface a new
-  // triangle can still cut through a neighbouring part. The corners of such triangles
-  // are locked and the swaps are made again from the mesh before the step (a few
-  // times at most; then the ES step is dropped).
-  const typename OutputMeshType::Pointer                previous = m_Working;
-  std::vector<typename OutputMeshType::PointIdentifier> locked;
-  SizeValueType                                         swaps = 0;
-  SizeValueType                                         cutting = 0;
-  bool                                                  dropped = false;
-  for (unsigned int attempt = 0;; ++attempt)
-  {
-    auto swap = EdgeSwapFilterType::New();
-    swap->SetInput(previous);
-    swap->SetLockedPoints(locked);
-    swap->SetNumberOfWorkUnits(this->GetNumberOfWorkUnits());
-    swap->Update();
-    typename OutputMeshType::Pointer candidate = swap->GetOutput();
-    candidate->DisconnectPipeline();
-    swaps = swap->GetNumberOfSwaps();
-
-    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*candidate);
-    std::vector<std::uint8_t>                 isNew(indexed.triangles.size(), 0);
-    std::vector<std::uint32_t>                queries;
-    for (std::uint32_t f = 0; f < indexed.triangles.size(); ++f)
-    {
-      const auto & t = indexed.triangles[f];
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        isNew[f] = isNew[f] || before.count(key(t[k], t[(k + 1) % 3])) == 0 ? 1 : 0;
-      }
-      if (isNew[f])
-      {
-        queries.push_back(f);
-      }
-    }
-    std::vector<std::uint32_t> bad;
-    for (const auto & pair : MeshExtraction::FindSelfIntersections(indexed, &queries))
-    {
-      for (const auto f : { pair.first, pair.second })
-      {
-        if (isNew[f])
-        {
-          bad.push_back(f);
-        }
-      }
-    }
-    std::sort(bad.begin(), bad.end());
-    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
-    cutting += bad.size();
-    if (bad.empty())
-    {
-      m_Working = candidate;
-      break;
-    }
-    if (attempt == 4)
-    {
-      m_Working = previous;
-      dropped = true;
-      break;
-    }
-    for (const auto f : bad)
-    {
-      for (const auto v : indexed.triangles[f])
-      {
-        locked.push_back(indexed.pointIds[v]);
-      }
-    }
-  }
+  const auto start = std::chrono::steady_clock::now();
+  // EdgeSwapQuadEdgeMeshFilter checks each swap locally, and (PreventSelfIntersections)
+  // keeps new triangles from cutting through a neighbouring part of a rough surface:
+  // their corners are locked and the swaps made again, up to 8 times, after which the
+  // mesh before the step is kept.
+  auto swap = EdgeSwapFilterType::New();
+  swap->SetInput(m_Working);
+  swap->SetNumberOfWorkUnits(this->GetNumberOfWorkUnits());
+  swap->Update();
+  typename OutputMeshType::Pointer swapped = swap->GetOutput();
+  swapped->DisconnectPipeline();
+  m_Working = swapped;
+  const SizeValueType swaps = swap->GetNumberOfSwaps();
+  const SizeValueType cutting = swap->GetNumberOfCrossingTriangles();
   m_Triangles = MeshExtraction::MakeIndexedTriangleMesh(*m_Working).triangles;
   m_Topology = MeshExtraction::BuildMeshTopology(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   StepType &   step = this->Record(OperationEnum::EdgeSwap, cycle, seconds, nullptr);
-  step.changes = dropped ? 0 : static_cast<std::int64_t>(swaps);
-  step.rejectedMoves = dropped ? static_cast<std::int64_t>(swaps) : static_cast<std::int64_t>(cutting);
+  step.changes = static_cast<std::int64_t>(swaps);
+  step.rejectedMoves = static_cast<std::int64_t>(cutting);
 }
 
 template <typename TInputMesh, typename TImage, typename TOutputMesh>
