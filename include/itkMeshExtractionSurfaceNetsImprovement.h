@@ -92,8 +92,10 @@ EdgeKey(std::uint32_t u, std::uint32_t v)
  *
  * A component of a few triangles (a voxel on its own, a few nodes across) can turn
  * inside out, or close onto itself, in one move or swap while none of its faces
- * flips, folds or crosses another at the end of it; its volume tells. The components
- * are those of the vertices, which swaps and moves do not change.
+ * flips, folds or crosses another at the end of it; its volume tells (as in
+ * UndoFoldingMoves, which compares each step of the scale-space refinement with its
+ * start). The components are those of the vertices, which swaps and moves do not
+ * change.
  * \ingroup MeshExtraction */
 struct MeshExtraction_EXPORT ComponentVolumes
 {

@@ -20,11 +20,11 @@
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkTaubinSmoothingQuadEdgeMeshFilter.h"
 #include "itkMeshExtractionEdgeSwapCriteria.h"
+#include "itkMeshExtractionRandomSurfaces.h"
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkTriangleMeshQualityCalculator.h"
 #include "itkBinaryMask3DMeshSource.h"
 #include "itkImplicitSurfaceImageSource.h"
-#include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include "itkGTest.h"
 #include <algorithm>
@@ -466,23 +466,12 @@ TEST(EdgeSwapQuadEdgeMeshFilter, SwapsNeverMakeTheSurfaceCrossItself)
   itk::SizeValueType swaps = 0;
   for (unsigned int seed : { 144u, 150u, 162u, 176u, 186u, 188u, 198u, 0u, 1u, 2u, 3u })
   {
-    double     iso = 0.0;
-    const auto image = MakeRandomSmoothVolume(seed, iso);
-    auto       extract = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>, QEMeshType>::New();
-    extract->SetInput(image);
-    extract->SetIsoValue(iso);
-    extract->SetRelaxation(seed % 2 ? itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::None
-                                    : itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::Combined);
-    try
-    {
-      extract->Update();
-    }
-    catch (const itk::ExceptionObject &)
+    const QEMeshType::Pointer input = RandomSurfaceNetsMesh(seed);
+    if (!input)
     {
       continue; // nothing inside or nothing outside
     }
-    const QEMeshType::Pointer input = extract->GetOutput();
-    const auto                before = Analyze(input);
+    const auto before = Analyze(input);
     ASSERT_TRUE(before.IsValidClosedSurface()) << "seed " << seed;
     ++tested;
     for (const bool prevent : { true, false })

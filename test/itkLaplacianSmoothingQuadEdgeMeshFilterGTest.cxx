@@ -16,6 +16,7 @@
  *
  *=========================================================================*/
 #include "itkLaplacianSmoothingQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionRandomSurfaces.h"
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkMeshExtractionVertexSmoothing.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
@@ -23,7 +24,6 @@
 #include "itkTriangleMeshQualityCalculator.h"
 #include "itkBinaryMask3DMeshSource.h"
 #include "itkImplicitSurfaceImageSource.h"
-#include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include "itkGTest.h"
 
@@ -405,24 +405,13 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, GuardHoldsOnSurfaceNetsMeshesStoredIn
   int tested = 0;
   for (unsigned int seed : seeds)
   {
-    double     iso = 0.0;
-    const auto image = MakeRandomSmoothVolume(seed, iso);
-    auto       extract = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>, QEMeshType>::New();
-    extract->SetInput(image);
-    extract->SetIsoValue(iso);
-    extract->SetRelaxation(seed % 2 ? itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::None
-                                    : itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::Combined);
-    try
-    {
-      extract->Update();
-    }
-    catch (const itk::ExceptionObject &)
+    const QEMeshType::Pointer input = RandomSurfaceNetsMesh(seed);
+    if (!input)
     {
       continue; // nothing inside or nothing outside
     }
     ++tested;
-    const QEMeshType::Pointer input = extract->GetOutput();
-    auto                      filter = LaplacianType::New();
+    auto filter = LaplacianType::New();
     filter->SetInput(input);
     filter->SetWeights(AllWeights[seed % 5]);
     filter->SetUpdateMode((seed / 5) % 2 ? Update::Immediate : Update::Batch);
