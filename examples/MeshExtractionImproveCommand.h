@@ -84,6 +84,17 @@ SwapCriterionNames()
   return table;
 }
 
+/** A line for the vertices the smoothing filters moved back where the surface would
+ * have crossed itself (PreventSelfIntersections), if there were any. */
+inline void
+PrintUndoneMoves(itk::SizeValueType undone)
+{
+  if (undone > 0)
+  {
+    std::cout << "  " << undone << " vertex moves undone where the surface would have cut through itself or folded\n";
+  }
+}
+
 /** The tool's own defaults, where they are not the filters': Laplacian smoothing
  * after the swaps, restricted to the centroid of the neighbours (thesis 4.2.2; the
  * filter itself restricts nothing by default), 10 iterations, regularity swaps. */
@@ -248,6 +259,7 @@ RunImprove(const Arguments & args)
               << " movable vertices, " << filter->GetNumberOfMoves() << " moves, "
               << filter->GetNumberOfShortenedMoves() << " shortened and " << filter->GetNumberOfRejectedMoves()
               << " rejected by the inversion guard\n";
+    PrintUndoneMoves(filter->GetNumberOfUndoneMoves());
     mesh = filter->GetOutput();
     mesh->DisconnectPipeline();
   }
@@ -268,6 +280,7 @@ RunImprove(const Arguments & args)
               << " iterations of " << filter->GetNumberOfMovableVertices() << " movable vertices, "
               << filter->GetNumberOfMoves() << " moves, " << filter->GetNumberOfShortenedMoves() << " shortened and "
               << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
+    PrintUndoneMoves(filter->GetNumberOfUndoneMoves());
     mesh = filter->GetOutput();
     mesh->DisconnectPipeline();
   }

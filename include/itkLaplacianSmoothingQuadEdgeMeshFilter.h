@@ -63,6 +63,13 @@ namespace itk
  *   before it. The guard is local: it does not look for non-adjacent parts of the
  *   surface that a vertex might pass through. GetNumberOfShortenedMoves() and
  *   GetNumberOfRejectedMoves() report how often it intervened.
+ * - PreventSelfIntersections (default on; with PreventInversions): after every
+ *   iteration, the moves that made the surface cut through itself or fold, or turned
+ *   a closed component inside out, go back to where the iteration started them
+ *   (MeshExtraction::UndoFoldingMoves: exact intersection tests of the triangles that
+ *   moved, signed volumes), so a valid closed surface stays valid. It costs a
+ *   self-intersection search per iteration (the 256^3 sphere's 222,528 triangles: see
+ *   benchmark/README.md). GetNumberOfUndoneMoves() counts the vertices moved back.
  * - FixBoundary (default on): vertices on the boundary of an open mesh do not move.
  *   Non-manifold vertices never move.
  * - NumberOfIterations (default 1, >= 0).
@@ -139,6 +146,12 @@ public:
   itkGetConstMacro(PreventInversions, bool);
   itkBooleanMacro(PreventInversions);
 
+  /** Undo moves that make the surface cross itself (default on; needs
+   * PreventInversions; see the class documentation). */
+  itkSetMacro(PreventSelfIntersections, bool);
+  itkGetConstMacro(PreventSelfIntersections, bool);
+  itkBooleanMacro(PreventSelfIntersections);
+
   /** How often the guard halves a move before rejecting it (default 5). */
   itkSetMacro(MaximumNumberOfShortenings, unsigned int);
   itkGetConstMacro(MaximumNumberOfShortenings, unsigned int);
@@ -176,6 +189,8 @@ public:
   itkGetConstMacro(NumberOfMoves, SizeValueType);
   itkGetConstMacro(NumberOfShortenedMoves, SizeValueType);
   itkGetConstMacro(NumberOfRejectedMoves, SizeValueType);
+  /** Vertices moved back by PreventSelfIntersections (over all iterations). */
+  itkGetConstMacro(NumberOfUndoneMoves, SizeValueType);
   itkGetConstMacro(NumberOfMovableVertices, SizeValueType);
 
 protected:
@@ -201,6 +216,7 @@ private:
   int                             m_NumberOfIterations{ 1 };
   bool                            m_VolumePreservation{ false };
   bool                            m_PreventInversions{ true };
+  bool                            m_PreventSelfIntersections{ true };
   unsigned int                    m_MaximumNumberOfShortenings{ 5 };
   double                          m_DegenerateQAreaTolerance{ 1e-4 };
   bool                            m_FixBoundary{ true };
@@ -209,6 +225,7 @@ private:
   SizeValueType m_NumberOfMoves{ 0 };
   SizeValueType m_NumberOfShortenedMoves{ 0 };
   SizeValueType m_NumberOfRejectedMoves{ 0 };
+  SizeValueType m_NumberOfUndoneMoves{ 0 };
   SizeValueType m_NumberOfMovableVertices{ 0 };
 };
 } // namespace itk

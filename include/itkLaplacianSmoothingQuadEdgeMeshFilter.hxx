@@ -72,6 +72,7 @@ LaplacianSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   m_NumberOfMoves = 0;
   m_NumberOfShortenedMoves = 0;
   m_NumberOfRejectedMoves = 0;
+  m_NumberOfUndoneMoves = 0;
   m_NumberOfMovableVertices = 0;
 
   const InputMeshType * input = this->GetInput();
@@ -111,6 +112,10 @@ LaplacianSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   for (int iteration = 0; iteration < m_NumberOfIterations; ++iteration)
   {
     smoother.Step(step, counters);
+    if (m_PreventInversions && m_PreventSelfIntersections)
+    {
+      m_NumberOfUndoneMoves += smoother.UndoFoldingMoves(m_DegenerateQAreaTolerance);
+    }
     this->UpdateProgress(static_cast<float>(iteration + 1) / static_cast<float>(m_NumberOfIterations));
   }
   this->UpdateProgress(1.0f);
@@ -131,6 +136,7 @@ LaplacianSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::PrintSelf(std::os
   os << indent << "NumberOfIterations: " << m_NumberOfIterations << std::endl;
   os << indent << "VolumePreservation: " << (m_VolumePreservation ? "On" : "Off") << std::endl;
   os << indent << "PreventInversions: " << (m_PreventInversions ? "On" : "Off") << std::endl;
+  os << indent << "PreventSelfIntersections: " << (m_PreventSelfIntersections ? "On" : "Off") << std::endl;
   os << indent << "MaximumNumberOfShortenings: " << m_MaximumNumberOfShortenings << std::endl;
   os << indent << "DegenerateQAreaTolerance: " << m_DegenerateQAreaTolerance << std::endl;
   os << indent << "FixBoundary: " << (m_FixBoundary ? "On" : "Off") << std::endl;
@@ -138,6 +144,7 @@ LaplacianSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::PrintSelf(std::os
   os << indent << "NumberOfMoves: " << m_NumberOfMoves << std::endl;
   os << indent << "NumberOfShortenedMoves: " << m_NumberOfShortenedMoves << std::endl;
   os << indent << "NumberOfRejectedMoves: " << m_NumberOfRejectedMoves << std::endl;
+  os << indent << "NumberOfUndoneMoves: " << m_NumberOfUndoneMoves << std::endl;
   os << indent << "NumberOfMovableVertices: " << m_NumberOfMovableVertices << std::endl;
 }
 } // namespace itk

@@ -150,6 +150,7 @@ public:
   Initialize(MeshType * mesh, bool fixBoundary)
   {
     m_Mesh = mesh;
+    m_FoldCheck = IndexedTriangleMesh();
     m_PointIds.clear();
     m_Positions.clear();
     m_Movable.clear();
@@ -290,6 +291,48 @@ public:
     m_Mesh->Modified();
   }
 
+  /** After Step() (or a Taubin pair of steps that share one start): the guard
+   * looks at one vertex at a time, so undo the moves that made the surface cut
+   * through itself, fold, turn a triangle over or degenerate, or turn a closed
+   * component inside out, against the positions at the step's start
+   * (UndoFoldingMoves: exact intersection tests, signed volumes). Returns the number
+   * of vertices moved back. The triangles and their topology are read from the
+   * mesh on the first call (the smoother does not change them). */
+  std::size_t
+  UndoFoldingMoves(double degenerateQAreaTolerance)
+  {
+    if (m_StepStart.size() != m_Positions.size() || m_Positions.empty())
+    {
+      return 0;
+    }
+    if (m_FoldCheck.points.size() != m_Positions.size())
+    {
+      m_FoldCheck = MakeIndexedTriangleMesh(*m_Mesh); // points in the same order as m_Positions
+      m_FoldTopology = BuildMeshTopology(m_FoldCheck);
+    }
+    m_FoldCheck.points = m_Positions;
+    const std::size_t undone =
+      MeshExtraction::UndoFoldingMoves(m_FoldCheck, m_FoldTopology, m_StepStart, degenerateQAreaTolerance);
+    if (undone > 0)
+    {
+      for (std::size_t k = 0; k < m_Positions.size(); ++k)
+      {
+        if (m_FoldCheck.points[k] != m_Positions[k])
+        {
+          m_Positions[k] = m_FoldCheck.points[k]; // a start position: stored exactly
+          auto & point = m_Mesh->GetPoints()->ElementAt(m_PointIds[k]);
+          for (unsigned int d = 0; d < 3; ++d)
+          {
+            point[d] = static_cast<CoordinateType>(m_Positions[k][d]);
+          }
+        }
+      }
+      m_Mesh->GetPoints()->Modified();
+      m_Mesh->Modified();
+    }
+    return undone;
+  }
+
 private:
   static Vec3
   Round(const Vec3 & x)
@@ -382,6 +425,8 @@ private:
   std::vector<std::size_t>     m_RingOffsets; ///< per movable vertex: its ring in m_Ring
   std::vector<std::uint32_t>   m_Ring;        ///< compact indices of the ring vertices
   std::vector<QEType *>        m_RingEdges;   ///< the edge from the vertex to each ring vertex
+  IndexedTriangleMesh          m_FoldCheck;   ///< UndoFoldingMoves: the triangles (points set per call)
+  MeshTopology                 m_FoldTopology;
 };
 
 } // namespace MeshExtraction

@@ -19,10 +19,15 @@
 #define itkMeshExtractionVertexSmoothing_h
 
 #include "itkMeshExtractionEnums.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionTriangleGeometry.h"
 
+#include <cmath>
 #include <cstddef>
+#include <algorithm>
 #include <limits>
+#include <vector>
 
 namespace itk
 {
@@ -379,6 +384,186 @@ GuardVertexMove(const VertexOneRing & r,
   }
   result.outcome = VertexMoveOutcome::Rejected;
   return result;
+}
+
+/** Whether triangle t of `mesh` keeps the orientation it had with the vertices at
+ * `startPositions` (its normal turned by less than 90 degrees) and does not become
+ * degenerate (q_area <= tolerance; if it already was, it may not get worse): the
+ * per-triangle checks of IsValidVertexMove(). \ingroup MeshExtraction */
+inline bool
+IsValidTriangleAgainstStart(const IndexedTriangleMesh & mesh,
+                            const std::vector<Vec3> &   startPositions,
+                            std::uint32_t               t,
+                            double                      tolerance)
+{
+  const auto & tri = mesh.triangles[t];
+  const Vec3 & a = mesh.points[tri[0]];
+  const Vec3 & b = mesh.points[tri[1]];
+  const Vec3 & c = mesh.points[tri[2]];
+  const Vec3 & a0 = startPositions[tri[0]];
+  const Vec3 & b0 = startPositions[tri[1]];
+  const Vec3 & c0 = startPositions[tri[2]];
+  const double q = TriangleQArea(a, b, c);
+  const double q0 = TriangleQArea(a0, b0, c0);
+  if (q0 > tolerance ? !(q > tolerance) : !(q >= q0))
+  {
+    return false;
+  }
+  return !(q0 > 0.0) || Dot(TriangleNormal(a0, b0, c0), TriangleNormal(a, b, c)) > 0.0;
+}
+
+/** Vertex moves checked one vertex at a time (the guards of the edge detector and of
+ * the smoothing filters) can together still fold the surface (two triangles of a
+ * ring crossing each other) or make it pass through another part. Given the mesh
+ * after such moves and the positions before them, this finds the triangles that
+ * changed and now intersect another triangle (exact predicates,
+ * FindSelfIntersections) or are turned over or degenerate against the start
+ * (IsValidTriangleAgainstStart), moves their vertices back to the start, and repeats
+ * with the triangles around the vertices moved back, until none is left: at worst
+ * everything is back where it started. Intersections between triangles that did not
+ * change are left alone. A closed component whose enclosed (signed) volume changed
+ * sign has turned inside out as a whole — a small component, e.g. the 12 triangles
+ * around one voxel, can do that without any triangle crossing another — and goes back
+ * to the start entirely; so does one pressed flat (less than a hundredth of its
+ * volume left). Returns the number of vertices moved back.
+ * \ingroup MeshExtraction */
+inline std::size_t
+UndoFoldingMoves(IndexedTriangleMesh &     mesh,
+                 const MeshTopology &      topology,
+                 const std::vector<Vec3> & startPositions,
+                 double                    tolerance)
+{
+  const std::size_t          n = mesh.points.size();
+  std::vector<std::uint8_t>  queued(mesh.triangles.size(), 0);
+  std::vector<std::uint32_t> queries;
+  auto                       queueAround = [&](std::size_t v) {
+    for (std::uint32_t k = topology.vertexTriangleOffsets[v]; k < topology.vertexTriangleOffsets[v + 1]; ++k)
+    {
+      const std::uint32_t t = topology.vertexTriangles[k];
+      if (!queued[t])
+      {
+        queued[t] = 1;
+        queries.push_back(t);
+      }
+    }
+  };
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    if (mesh.points[v] != startPositions[v])
+    {
+      queueAround(v);
+    }
+  }
+  // Closed components whose signed volume changed sign (turned inside out): all their
+  // vertices go back. Returns the vertices moved back.
+  auto undoInvertedComponents = [&]() {
+    const std::size_t         components = topology.numberOfComponents;
+    std::vector<double>       startVolume(components, 0.0);
+    std::vector<double>       volume(components, 0.0);
+    std::vector<Vec3>         origin(components);
+    std::vector<std::uint8_t> hasOrigin(components, 0);
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    {
+      const std::uint32_t c = topology.triangleComponent[f];
+      const auto &        t = mesh.triangles[f];
+      if (!hasOrigin[c])
+      {
+        hasOrigin[c] = 1;
+        origin[c] = startPositions[t[0]];
+      }
+      const Vec3 & o = origin[c];
+      startVolume[c] += Dot(startPositions[t[0]] - o, Cross(startPositions[t[1]] - o, startPositions[t[2]] - o));
+      volume[c] += Dot(mesh.points[t[0]] - o, Cross(mesh.points[t[1]] - o, mesh.points[t[2]] - o));
+    }
+    std::vector<std::uint8_t> inverted(components, 0);
+    bool                      any = false;
+    for (std::size_t c = 0; c < components; ++c)
+    {
+      const bool closed = c >= topology.componentBoundaryLoops.size() || topology.componentBoundaryLoops[c] == 0;
+      // Inside out, or flattened to less than a hundredth of its volume (a uniform
+      // Laplacian step takes a voxel's 12 triangles to about a third; cotangent
+      // weights, unconstrained, could press them flat, two sheets on each other).
+      const bool flattened = std::abs(volume[c]) < 0.01 * std::abs(startVolume[c]);
+      if (closed &&
+          ((startVolume[c] > 0.0 && !(volume[c] > 0.0)) || (startVolume[c] < 0.0 && !(volume[c] < 0.0)) || flattened))
+      {
+        inverted[c] = 1;
+        any = true;
+      }
+    }
+    std::vector<std::uint32_t> back;
+    if (any)
+    {
+      for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+      {
+        if (inverted[topology.triangleComponent[f]])
+        {
+          for (const auto v : mesh.triangles[f])
+          {
+            if (mesh.points[v] != startPositions[v])
+            {
+              mesh.points[v] = startPositions[v];
+              back.push_back(v);
+            }
+          }
+        }
+      }
+    }
+    return back;
+  };
+
+  std::size_t undone = 0;
+  for (const auto v : undoInvertedComponents())
+  {
+    ++undone;
+    queueAround(v); // the component is back, but what moved around it may now cut it
+  }
+  while (!queries.empty())
+  {
+    std::sort(queries.begin(), queries.end());
+    std::vector<std::uint32_t> bad;
+    for (const auto t : queries)
+    {
+      if (!IsValidTriangleAgainstStart(mesh, startPositions, t, tolerance))
+      {
+        bad.push_back(t);
+      }
+    }
+    for (const auto & pair : FindSelfIntersections(mesh, &queries))
+    {
+      bad.push_back(pair.first);
+      bad.push_back(pair.second);
+    }
+    std::fill(queued.begin(), queued.end(), 0);
+    queries.clear();
+    std::vector<std::uint32_t> back;
+    for (const auto t : bad)
+    {
+      for (const auto v : mesh.triangles[t])
+      {
+        if (mesh.points[v] != startPositions[v])
+        {
+          mesh.points[v] = startPositions[v];
+          back.push_back(v);
+        }
+      }
+    }
+    undone += back.size();
+    for (const auto v : back)
+    {
+      queueAround(v);
+    }
+    if (queries.empty())
+    {
+      // Moving vertices back can in turn leave a component inside out.
+      for (const auto v : undoInvertedComponents())
+      {
+        ++undone;
+        queueAround(v);
+      }
+    }
+  }
+  return undone;
 }
 
 } // namespace MeshExtraction

@@ -271,30 +271,8 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Smoothing(u
 
   // The smoothing guard checks one vertex at a time: undo the moves that fold the
   // surface or make it cut through itself (see MeshExtraction::UndoFoldingMoves).
-  MeshExtraction::IndexedTriangleMesh current;
-  current.points = this->Positions();
-  current.triangles = m_Triangles;
-  const std::size_t undone =
-    MeshExtraction::UndoFoldingMoves(current, m_Topology, before, parameters.degenerateQAreaTolerance);
-  if (undone > 0)
-  {
-    auto *      points = m_Working->GetPoints();
-    std::size_t i = 0;
-    for (auto it = points->Begin(); it != points->End(); ++it, ++i)
-    {
-      if (current.points[i] == before[i])
-      {
-        for (unsigned int d = 0; d < 3; ++d)
-        {
-          it.Value()[d] = static_cast<typename OutputMeshType::PointType::ValueType>(before[i][d]);
-        }
-      }
-    }
-    points->Modified();
-    m_Working->Modified();
-    smoother.Initialize(m_Working, true); // it keeps its own copy of the positions
-  }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::size_t undone = smoother.UndoFoldingMoves(parameters.degenerateQAreaTolerance);
+  const double      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const std::vector<MeshExtraction::Vec3> after = this->Positions();
   double                                  travel = 0.0;

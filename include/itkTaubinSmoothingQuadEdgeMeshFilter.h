@@ -42,11 +42,11 @@ namespace itk
  *   frequency, typically 0.01-0.1; it must lie in (0, 1/lambda), which is exactly
  *   the range giving mu < -lambda). GetEffectiveMu() gives the mu in use.
  * - NumberOfIterations >= 0 (default 10): lambda|mu pairs.
- * - Weights, UpdateMode, PreventInversions, MaximumNumberOfShortenings,
- *   DegenerateQAreaTolerance, FixBoundary and CoefficientsMethod as in
- *   LaplacianSmoothingQuadEdgeMeshFilter (defaults Uniform, Batch, on, 5, 1e-4, on,
- *   none). The guard checks both steps of every pair, each move against the
- *   orientations before the move and at the start of the pair, so that no iteration
+ * - Weights, UpdateMode, PreventInversions, PreventSelfIntersections,
+ *   MaximumNumberOfShortenings, DegenerateQAreaTolerance, FixBoundary and
+ *   CoefficientsMethod as in LaplacianSmoothingQuadEdgeMeshFilter (defaults Uniform,
+ *   Batch, on, on, 5, 1e-4, on, none; the self-intersection check after each pair). The guard checks both steps of
+ * every pair, each move against the orientations before the move and at the start of the pair, so that no iteration
  *   turns a triangle by 90 degrees or more; GetNumberOfShortenedMoves() and
  *   GetNumberOfRejectedMoves() count over both steps.
  *
@@ -117,6 +117,9 @@ public:
   itkSetMacro(PreventInversions, bool);
   itkGetConstMacro(PreventInversions, bool);
   itkBooleanMacro(PreventInversions);
+  itkSetMacro(PreventSelfIntersections, bool);
+  itkGetConstMacro(PreventSelfIntersections, bool);
+  itkBooleanMacro(PreventSelfIntersections);
   itkSetMacro(MaximumNumberOfShortenings, unsigned int);
   itkGetConstMacro(MaximumNumberOfShortenings, unsigned int);
   itkSetMacro(DegenerateQAreaTolerance, double);
@@ -145,6 +148,8 @@ public:
   itkGetConstMacro(NumberOfMoves, SizeValueType);
   itkGetConstMacro(NumberOfShortenedMoves, SizeValueType);
   itkGetConstMacro(NumberOfRejectedMoves, SizeValueType);
+  /** Vertices moved back by PreventSelfIntersections (over all iterations). */
+  itkGetConstMacro(NumberOfUndoneMoves, SizeValueType);
   itkGetConstMacro(NumberOfMovableVertices, SizeValueType);
 
 protected:
@@ -169,6 +174,7 @@ private:
   SmoothingWeightsEnum            m_Weights{ SmoothingWeightsEnum::Uniform };
   SmoothingUpdateEnum             m_UpdateMode{ SmoothingUpdateEnum::Batch };
   bool                            m_PreventInversions{ true };
+  bool                            m_PreventSelfIntersections{ true };
   unsigned int                    m_MaximumNumberOfShortenings{ 5 };
   double                          m_DegenerateQAreaTolerance{ 1e-4 };
   bool                            m_FixBoundary{ true };
@@ -177,6 +183,7 @@ private:
   SizeValueType m_NumberOfMoves{ 0 };
   SizeValueType m_NumberOfShortenedMoves{ 0 };
   SizeValueType m_NumberOfRejectedMoves{ 0 };
+  SizeValueType m_NumberOfUndoneMoves{ 0 };
   SizeValueType m_NumberOfMovableVertices{ 0 };
 };
 } // namespace itk

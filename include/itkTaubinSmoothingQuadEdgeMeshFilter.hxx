@@ -87,6 +87,7 @@ TaubinSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   m_NumberOfMoves = 0;
   m_NumberOfShortenedMoves = 0;
   m_NumberOfRejectedMoves = 0;
+  m_NumberOfUndoneMoves = 0;
   m_NumberOfMovableVertices = 0;
 
   const InputMeshType * input = this->GetInput();
@@ -125,6 +126,10 @@ TaubinSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
     smoother.Step(step, counters);
     step.move.factor = mu;
     smoother.Step(step, counters, false); // guarded against the orientations before the lambda step
+    if (m_PreventInversions && m_PreventSelfIntersections)
+    {
+      m_NumberOfUndoneMoves += smoother.UndoFoldingMoves(m_DegenerateQAreaTolerance); // against the pair's start
+    }
     this->UpdateProgress(static_cast<float>(iteration + 1) / static_cast<float>(m_NumberOfIterations));
   }
   this->UpdateProgress(1.0f);
@@ -146,6 +151,7 @@ TaubinSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::PrintSelf(std::ostre
   os << indent << "Weights: " << m_Weights << std::endl;
   os << indent << "UpdateMode: " << m_UpdateMode << std::endl;
   os << indent << "PreventInversions: " << (m_PreventInversions ? "On" : "Off") << std::endl;
+  os << indent << "PreventSelfIntersections: " << (m_PreventSelfIntersections ? "On" : "Off") << std::endl;
   os << indent << "MaximumNumberOfShortenings: " << m_MaximumNumberOfShortenings << std::endl;
   os << indent << "DegenerateQAreaTolerance: " << m_DegenerateQAreaTolerance << std::endl;
   os << indent << "FixBoundary: " << (m_FixBoundary ? "On" : "Off") << std::endl;
@@ -153,6 +159,7 @@ TaubinSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::PrintSelf(std::ostre
   os << indent << "NumberOfMoves: " << m_NumberOfMoves << std::endl;
   os << indent << "NumberOfShortenedMoves: " << m_NumberOfShortenedMoves << std::endl;
   os << indent << "NumberOfRejectedMoves: " << m_NumberOfRejectedMoves << std::endl;
+  os << indent << "NumberOfUndoneMoves: " << m_NumberOfUndoneMoves << std::endl;
   os << indent << "NumberOfMovableVertices: " << m_NumberOfMovableVertices << std::endl;
 }
 } // namespace itk
