@@ -28,6 +28,7 @@
 
 #include "itkGTest.h"
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 
 #include <functional>
@@ -1010,4 +1011,92 @@ TEST(MeshImprovementTable, DISABLED_PrintsBeforeAndAfterOnAMarchingCubesSphereOf
       std::to_string(noisySwap->GetNumberOfSwaps()),
       nullptr,
       false);
+}
+
+// ------------------------------------------------------------------------------
+// Stress runs (not run by default: minutes). Seeds from the environment:
+//   MESHEXTRACTION_STRESS_SEEDS=0,300 build/test/MeshExtractionGTestDriver
+//     --gtest_also_run_disabled_tests --gtest_filter='StressRuns.*'
+// ------------------------------------------------------------------------------
+TEST(StressRuns, DISABLED_RandomSmoothVolumes)
+{
+  unsigned int first = 0;
+  unsigned int last = 100;
+  if (const char * seeds = std::getenv("MESHEXTRACTION_STRESS_SEEDS"))
+  {
+    std::istringstream in(seeds);
+    char               comma = 0;
+    in >> first >> comma >> last;
+  }
+  std::map<std::string, int> failures;
+  std::map<std::string, int> runs;
+  auto                       check = [&](const std::string & what, bool ok, unsigned int seed) {
+    ++runs[what];
+    if (!ok)
+    {
+      ++failures[what];
+      std::cout << what << ": seed " << seed << '\n';
+    }
+  };
+  for (unsigned int seed = first; seed < last; ++seed)
+  {
+    const QEMeshType::Pointer input = RandomSurfaceNetsMesh(seed);
+    if (!input)
+    {
+      continue;
+    }
+    const auto before = Analyze(input);
+    check("SurfaceNets valid", before.IsValidClosedSurface(), seed);
+    double     iso = 0.0;
+    const auto image = MakeRandomSmoothVolume(seed, iso);
+    auto       high = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>, QEMeshType>::New();
+    high->SetInput(image);
+    high->SetIsoValue(iso);
+    high->SetHighQuality(true);
+    high->Update();
+    const auto hq = Analyze(high->GetOutput());
+    check("high quality valid, topology kept",
+          hq.IsValidClosedSurface() && hq.eulerCharacteristic == before.eulerCharacteristic &&
+            hq.connectedComponents == before.connectedComponents,
+          seed);
+
+    auto swap = SwapType::New();
+    swap->SetInput(input);
+    swap->SetCriterion(static_cast<Criterion>(seed % 3));
+    swap->Update();
+    const auto swapped = Analyze(swap->GetOutput());
+    check("edge swap valid, topology kept",
+          swapped.IsValidClosedSurface() && swapped.eulerCharacteristic == before.eulerCharacteristic,
+          seed);
+
+    auto laplacian = LaplacianType::New();
+    laplacian->SetInput(input);
+    laplacian->SetWeights(static_cast<itk::MeshExtractionEnums::SmoothingWeights>(seed % 5));
+    laplacian->SetUpdateMode(static_cast<itk::MeshExtractionEnums::SmoothingUpdate>((seed / 5) % 2));
+    laplacian->SetMovementConstraint(static_cast<itk::MeshExtractionEnums::MovementConstraint>((seed / 10) % 3));
+    laplacian->SetNumberOfIterations(10);
+    laplacian->Update();
+    const auto smoothed = Analyze(laplacian->GetOutput());
+    check("Laplacian x10 no self-intersection", smoothed.selfIntersectingPairs == 0, seed);
+    check("Laplacian x10 valid (known gap: flattened components)", smoothed.IsValidClosedSurface(), seed);
+
+    auto taubin = itk::TaubinSmoothingQuadEdgeMeshFilter<QEMeshType>::New();
+    taubin->SetInput(input);
+    taubin->Update();
+    const auto taubinReport = Analyze(taubin->GetOutput());
+    check("Taubin x10 no self-intersection", taubinReport.selfIntersectingPairs == 0, seed);
+    check("Taubin x10 valid (known gap: flattened components)", taubinReport.IsValidClosedSurface(), seed);
+  }
+  for (const auto & r : runs)
+  {
+    std::cout << r.first << ": " << failures[r.first] << " failures in " << r.second << '\n';
+  }
+  for (const std::string what : { "SurfaceNets valid",
+                                  "high quality valid, topology kept",
+                                  "edge swap valid, topology kept",
+                                  "Laplacian x10 no self-intersection",
+                                  "Taubin x10 no self-intersection" })
+  {
+    EXPECT_EQ(failures[what], 0) << what;
+  }
 }

@@ -299,11 +299,12 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityKeepsSmoothRandomVolumesValidWithT
   // or rotated grids: many small components, thin parts, pinches. The high-quality
   // mode must give a valid closed surface with the components and Euler
   // characteristic of plain SNERT. Seeds 61, 90 and 100 failed before folds were
-  // kept from closing: the 12 triangles of a single voxel's component came out
-  // inside out by the ray test.
+  // kept from closing, 8226 and 8278 before components kept their volume (11 of
+  // 12,000 seeds from 8000): each time the 12 triangles of a single voxel's
+  // component came out inside out by the ray test.
   std::vector<unsigned int> seeds(40);
   std::iota(seeds.begin(), seeds.end(), 0u);
-  seeds.insert(seeds.end(), { 61u, 90u, 100u });
+  seeds.insert(seeds.end(), { 61u, 90u, 100u, 8226u, 8278u });
   std::size_t tested = 0;
   for (unsigned int seed : seeds)
   {
