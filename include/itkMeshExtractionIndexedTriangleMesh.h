@@ -117,6 +117,28 @@ struct MeshTopology
 MeshExtraction_EXPORT MeshTopology
 BuildMeshTopology(const IndexedTriangleMesh & mesh);
 
+/** 6 x the signed volume each component of a closed mesh encloses (positive for an
+ * outer surface, negative for a cavity's), summed over `triangles` in order:
+ * componentOf(f) < origin.size() names the component of triangle f, and its volume
+ * is measured from origin[c] (one of its points, which keeps the round-off small). */
+template <typename TComponentOf>
+std::vector<double>
+ComponentSixVolumes(const std::vector<TriangleIndices> & triangles,
+                    const std::vector<Vec3> &            points,
+                    const std::vector<Vec3> &            origin,
+                    TComponentOf &&                      componentOf)
+{
+  std::vector<double> volume(origin.size(), 0.0);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+  {
+    const auto &        t = triangles[f];
+    const std::uint32_t c = componentOf(f);
+    const Vec3 &        o = origin[c];
+    volume[c] += Dot(points[t[0]] - o, Cross(points[t[1]] - o, points[t[2]] - o));
+  }
+  return volume;
+}
+
 /** Split a quad (a, b, c, d) along its shorter diagonal into two triangles. */
 MeshExtraction_EXPORT void
 SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIndices & t0, TriangleIndices & t1);

@@ -319,12 +319,7 @@ public:
       {
         if (m_FoldCheck.points[k] != m_Positions[k])
         {
-          m_Positions[k] = m_FoldCheck.points[k]; // a start position: stored exactly
-          auto & point = m_Mesh->GetPoints()->ElementAt(m_PointIds[k]);
-          for (unsigned int d = 0; d < 3; ++d)
-          {
-            point[d] = static_cast<CoordinateType>(m_Positions[k][d]);
-          }
+          this->Store(k, m_FoldCheck.points[k]); // a start position: stored exactly
         }
       }
       m_Mesh->GetPoints()->Modified();
@@ -406,13 +401,19 @@ private:
     }
     if (position != ring.center)
     {
-      const std::uint32_t k = m_Movable[j];
-      m_Positions[k] = position;
-      auto & point = m_Mesh->GetPoints()->ElementAt(m_PointIds[k]);
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        point[d] = static_cast<CoordinateType>(position[d]);
-      }
+      this->Store(m_Movable[j], position);
+    }
+  }
+
+  /** Point k (compact index) to `position`, in the smoother and in the mesh. */
+  void
+  Store(std::size_t k, const Vec3 & position)
+  {
+    m_Positions[k] = position;
+    auto & point = m_Mesh->GetPoints()->ElementAt(m_PointIds[k]);
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      point[d] = static_cast<CoordinateType>(position[d]);
     }
   }
 

@@ -458,23 +458,20 @@ UndoFoldingMoves(IndexedTriangleMesh &     mesh,
   // vertices go back. Returns the vertices moved back.
   auto undoInvertedComponents = [&]() {
     const std::size_t         components = topology.numberOfComponents;
-    std::vector<double>       startVolume(components, 0.0);
-    std::vector<double>       volume(components, 0.0);
     std::vector<Vec3>         origin(components);
     std::vector<std::uint8_t> hasOrigin(components, 0);
     for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     {
       const std::uint32_t c = topology.triangleComponent[f];
-      const auto &        t = mesh.triangles[f];
       if (!hasOrigin[c])
       {
         hasOrigin[c] = 1;
-        origin[c] = startPositions[t[0]];
+        origin[c] = startPositions[mesh.triangles[f][0]];
       }
-      const Vec3 & o = origin[c];
-      startVolume[c] += Dot(startPositions[t[0]] - o, Cross(startPositions[t[1]] - o, startPositions[t[2]] - o));
-      volume[c] += Dot(mesh.points[t[0]] - o, Cross(mesh.points[t[1]] - o, mesh.points[t[2]] - o));
     }
+    auto                      componentOf = [&topology](std::size_t f) { return topology.triangleComponent[f]; };
+    const std::vector<double> startVolume = ComponentSixVolumes(mesh.triangles, startPositions, origin, componentOf);
+    const std::vector<double> volume = ComponentSixVolumes(mesh.triangles, mesh.points, origin, componentOf);
     std::vector<std::uint8_t> inverted(components, 0);
     bool                      any = false;
     for (std::size_t c = 0; c < components; ++c)

@@ -359,13 +359,8 @@ ComponentVolumes::Initialize(const std::vector<TriangleIndices> & triangles, con
       vertexComponent[v] = label[root];
     }
   }
-  reference.assign(origin.size(), 0.0);
-  for (const auto & t : triangles)
-  {
-    const std::uint32_t c = vertexComponent[t[0]];
-    const Vec3 &        o = origin[c];
-    reference[c] += Dot(points[t[0]] - o, Cross(points[t[1]] - o, points[t[2]] - o));
-  }
+  reference =
+    ComponentSixVolumes(triangles, points, origin, [&](std::size_t f) { return vertexComponent[triangles[f][0]]; });
 }
 
 std::vector<bool>
@@ -376,13 +371,8 @@ ComponentVolumes::Collapsed(const std::vector<TriangleIndices> & triangles, cons
   {
     return collapsed;
   }
-  std::vector<double> volume(reference.size(), 0.0);
-  for (const auto & t : triangles)
-  {
-    const std::uint32_t c = vertexComponent[t[0]];
-    const Vec3 &        o = origin[c];
-    volume[c] += Dot(points[t[0]] - o, Cross(points[t[1]] - o, points[t[2]] - o));
-  }
+  const std::vector<double> volume =
+    ComponentSixVolumes(triangles, points, origin, [&](std::size_t f) { return vertexComponent[triangles[f][0]]; });
   for (std::size_t c = 0; c < reference.size(); ++c)
   {
     // Not (same sign and at least a quarter of the magnitude); NaN counts as collapsed.
