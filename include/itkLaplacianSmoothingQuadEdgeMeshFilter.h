@@ -67,9 +67,12 @@ namespace itk
  *   iteration, the moves that made the surface cut through itself or fold, or turned
  *   a closed component inside out, go back to where the iteration started them
  *   (MeshExtraction::UndoFoldingMoves: exact intersection tests of the triangles that
- *   moved, signed volumes), so a valid closed surface stays valid. It costs a
- *   self-intersection search per iteration (the 256^3 sphere's 222,528 triangles: see
- *   benchmark/README.md). GetNumberOfUndoneMoves() counts the vertices moved back.
+ *   moved, signed volumes), so a valid closed surface stays valid; so do, against the
+ *   input, the moves that shrink a closed component below a thousandth of its volume
+ *   or move a surface past a component (its nesting parity changes, a ray test per
+ *   component when there are several). It costs a self-intersection search per
+ *   iteration (the 256^3 sphere's 222,528 triangles: see benchmark/README.md).
+ *   GetNumberOfUndoneMoves() counts the vertices moved back.
  * - FixBoundary (default on): vertices on the boundary of an open mesh do not move.
  *   Non-manifold vertices never move.
  * - NumberOfIterations (default 1, >= 0).

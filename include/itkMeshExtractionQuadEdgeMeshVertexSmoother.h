@@ -294,10 +294,12 @@ public:
   /** After Step() (or a Taubin pair of steps that share one start): the guard
    * looks at one vertex at a time, so undo the moves that made the surface cut
    * through itself, fold, turn a triangle over or degenerate, or turn a closed
-   * component inside out, against the positions at the step's start
-   * (UndoFoldingMoves: exact intersection tests, signed volumes). Returns the number
-   * of vertices moved back. The triangles and their topology are read from the
-   * mesh on the first call (the smoother does not change them). */
+   * component inside out, against the positions at the step's start, and those
+   * that collapse a component or move a surface past it, against the mesh at the
+   * first call (UndoFoldingMoves with a ComponentReference: exact intersection tests,
+   * signed volumes, nesting parity). Returns the number of vertices moved back. The
+   * triangles and their topology are read from the mesh on the first call (the
+   * smoother does not change them). */
   std::size_t
   UndoFoldingMoves(double degenerateQAreaTolerance)
   {
@@ -309,10 +311,13 @@ public:
     {
       m_FoldCheck = MakeIndexedTriangleMesh(*m_Mesh); // points in the same order as m_Positions
       m_FoldTopology = BuildMeshTopology(m_FoldCheck);
+      // Each component's volume and nesting before the first step.
+      m_FoldCheck.points = m_StepStart;
+      m_Reference = MakeComponentReference(m_FoldCheck, m_FoldTopology);
     }
     m_FoldCheck.points = m_Positions;
-    const std::size_t undone =
-      MeshExtraction::UndoFoldingMoves(m_FoldCheck, m_FoldTopology, m_StepStart, degenerateQAreaTolerance);
+    const std::size_t undone = MeshExtraction::UndoFoldingMoves(
+      m_FoldCheck, m_FoldTopology, m_StepStart, degenerateQAreaTolerance, &m_Reference);
     if (undone > 0)
     {
       for (std::size_t k = 0; k < m_Positions.size(); ++k)
@@ -428,6 +433,7 @@ private:
   std::vector<QEType *>        m_RingEdges;   ///< the edge from the vertex to each ring vertex
   IndexedTriangleMesh          m_FoldCheck;   ///< UndoFoldingMoves: the triangles (points set per call)
   MeshTopology                 m_FoldTopology;
+  ComponentReference           m_Reference; ///< the components before the first step
 };
 
 } // namespace MeshExtraction

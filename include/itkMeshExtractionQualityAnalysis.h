@@ -166,6 +166,16 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
 MeshExtraction_EXPORT std::vector<int>
 ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance = 1e-6);
 
+/** For every component of `mesh` (numbered as in `topology`), whether it lies inside
+ * an odd (1) or even (0) number of the other components: the parity of the crossings
+ * of a ray from one of its vertices with the other components' triangles; -1 if the
+ * component has a boundary or every ray tried grazed an edge or vertex. A component
+ * the rest of the surface swept over (a surface moving past a small piece in one
+ * step, leaving no intersection behind) changes its parity, and with it whether its
+ * triangles face out. Empty if the mesh has fewer than two components. */
+MeshExtraction_EXPORT std::vector<std::int8_t>
+                      ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & topology);
+
 /** FacesIntersect for faces f and g of `mesh`. */
 MeshExtraction_EXPORT bool
 MeshFacesIntersect(const IndexedTriangleMesh & mesh, std::uint32_t f, std::uint32_t g);

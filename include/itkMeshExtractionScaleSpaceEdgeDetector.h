@@ -257,6 +257,9 @@ public:
     const MeshTopology  topology = BuildMeshTopology(indexed);
     const std::size_t   n = indexed.points.size();
     result.numberOfVertices = n;
+    // No move may take a surface past another component (see UndoFoldingMoves).
+    const ComponentReference componentsAtStart =
+      p.preventInversions ? MakeComponentReference(indexed, topology) : ComponentReference{};
     const double capture = p.maximumDeviation;
     result.scales =
       ScaleSpaceScales(capture, ResolveMinimumScale(image.GetSpacing(), p.minimumScale), p.scalesPerOctave);
@@ -342,7 +345,8 @@ public:
     }
     if (p.preventInversions)
     {
-      result.undoneMoves = UndoFoldingMoves(indexed, topology, startPositions, p.degenerateQAreaTolerance);
+      result.undoneMoves =
+        UndoFoldingMoves(indexed, topology, startPositions, p.degenerateQAreaTolerance, &componentsAtStart);
     }
 
     // Write the new positions.

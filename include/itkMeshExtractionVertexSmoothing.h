@@ -21,6 +21,7 @@
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionQualityAnalysis.h"
+#include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMeshExtractionTriangleGeometry.h"
 
 #include <cmath>
@@ -412,6 +413,35 @@ IsValidTriangleAgainstStart(const IndexedTriangleMesh & mesh,
   return !(q0 > 0.0) || Dot(TriangleNormal(a0, b0, c0), TriangleNormal(a, b, c)) > 0.0;
 }
 
+/** What a series of smoothing steps keeps of a mesh's components before the first
+ * step, for UndoFoldingMoves: each component's ComponentSixVolumes (measured from
+ * the first vertex of its first triangle) and its ComponentNestingParity. */
+struct ComponentReference
+{
+  std::vector<double>      sixVolumes;
+  std::vector<std::int8_t> nesting;
+};
+
+/** The ComponentReference of `mesh`, whose topology is `topology`. */
+inline ComponentReference
+MakeComponentReference(const IndexedTriangleMesh & mesh, const MeshTopology & topology)
+{
+  ComponentReference r;
+  std::vector<Vec3>  origin(topology.numberOfComponents);
+  for (std::size_t f = mesh.triangles.size(); f-- > 0;)
+  {
+    origin[topology.triangleComponent[f]] = mesh.points[mesh.triangles[f][0]];
+  }
+  r.sixVolumes = ComponentSixVolumes(
+    mesh.triangles, mesh.points, origin, [&topology](std::size_t f) { return topology.triangleComponent[f]; });
+  r.nesting = ComponentNestingParity(mesh, topology);
+  return r;
+}
+
+/** A closed component that a series of steps shrinks below this fraction of its
+ * volume before the first (ComponentReference) goes back (UndoFoldingMoves). */
+constexpr double CollapsedComponentVolumeFraction = 1e-3;
+
 /** Vertex moves checked one vertex at a time (the guards of the edge detector and of
  * the smoothing filters) can together still fold the surface (two triangles of a
  * ring crossing each other) or make it pass through another part. Given the mesh
@@ -425,13 +455,24 @@ IsValidTriangleAgainstStart(const IndexedTriangleMesh & mesh,
  * sign has turned inside out as a whole — a small component, e.g. the 12 triangles
  * around one voxel, can do that without any triangle crossing another — and goes back
  * to the start entirely; so does one pressed flat (less than a hundredth of its
- * volume left). Returns the number of vertices moved back.
+ * volume left).
+ *
+ * With `reference` (MakeComponentReference before the first of a series of steps,
+ * on the same topology), two more things that ten Laplacian steps did to the 12
+ * triangles around one voxel, each step within the rules above, are undone: a
+ * component shrunk below CollapsedComponentVolumeFraction of its reference volume
+ * (a speck) goes back; and where a component's ComponentNestingParity changed (a
+ * surface moved past it in one step, leaving no intersection behind, so that its
+ * triangles now face the wrong way), it goes back, and so do the moved triangles of
+ * the other components whose boxes, before and after the step, overlap its own.
+ * Returns the number of vertices moved back.
  * \ingroup MeshExtraction */
 inline std::size_t
-UndoFoldingMoves(IndexedTriangleMesh &     mesh,
-                 const MeshTopology &      topology,
-                 const std::vector<Vec3> & startPositions,
-                 double                    tolerance)
+UndoFoldingMoves(IndexedTriangleMesh &      mesh,
+                 const MeshTopology &       topology,
+                 const std::vector<Vec3> &  startPositions,
+                 double                     tolerance,
+                 const ComponentReference * reference = nullptr)
 {
   const std::size_t          n = mesh.points.size();
   std::vector<std::uint8_t>  queued(mesh.triangles.size(), 0);
@@ -480,7 +521,10 @@ UndoFoldingMoves(IndexedTriangleMesh &     mesh,
       // Inside out, or flattened to less than a hundredth of its volume (a uniform
       // Laplacian step takes a voxel's 12 triangles to about a third; cotangent
       // weights, unconstrained, could press them flat, two sheets on each other).
-      const bool flattened = std::abs(volume[c]) < 0.01 * std::abs(startVolume[c]);
+      const bool flattened =
+        std::abs(volume[c]) < 0.01 * std::abs(startVolume[c]) ||
+        (reference && c < reference->sixVolumes.size() && std::abs(volume[c]) < std::abs(startVolume[c]) &&
+         std::abs(volume[c]) < CollapsedComponentVolumeFraction * std::abs(reference->sixVolumes[c]));
       if (closed &&
           ((startVolume[c] > 0.0 && !(volume[c] > 0.0)) || (startVolume[c] < 0.0 && !(volume[c] < 0.0)) || flattened))
       {
@@ -509,14 +553,110 @@ UndoFoldingMoves(IndexedTriangleMesh &     mesh,
     return back;
   };
 
+  // Components whose nesting parity changed: they go back, with the moved triangles
+  // of other components whose boxes (before and after) overlap theirs.
+  auto undoNestingChanges = [&]() {
+    std::vector<std::uint32_t> back;
+    if (!reference || reference->nesting.empty() || mesh.points == startPositions)
+    {
+      return back;
+    }
+    const std::vector<std::int8_t> nesting = ComponentNestingParity(mesh, topology);
+    const std::size_t              components = topology.numberOfComponents;
+    std::vector<std::uint8_t>      changed(components, 0);
+    bool                           any = false;
+    for (std::size_t c = 0; c < components && c < reference->nesting.size(); ++c)
+    {
+      if (nesting[c] >= 0 && reference->nesting[c] >= 0 && nesting[c] != reference->nesting[c])
+      {
+        changed[c] = 1;
+        any = true;
+      }
+    }
+    if (!any)
+    {
+      return back;
+    }
+    std::vector<AxisAlignedBox> componentBox(components);
+    auto                        sweptBox = [&](std::size_t f) {
+      AxisAlignedBox box;
+      for (const auto v : mesh.triangles[f])
+      {
+        box.Add(mesh.points[v]);
+        box.Add(startPositions[v]);
+      }
+      return box;
+    };
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    {
+      const std::uint32_t c = topology.triangleComponent[f];
+      if (changed[c])
+      {
+        componentBox[c].Add(sweptBox(f));
+      }
+    }
+    auto sendBack = [&](std::uint32_t v) {
+      if (mesh.points[v] != startPositions[v])
+      {
+        mesh.points[v] = startPositions[v];
+        back.push_back(v);
+      }
+    };
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    {
+      const std::uint32_t c = topology.triangleComponent[f];
+      if (changed[c])
+      {
+        for (const auto v : mesh.triangles[f])
+        {
+          sendBack(v);
+        }
+        continue;
+      }
+      const auto & t = mesh.triangles[f];
+      if (mesh.points[t[0]] == startPositions[t[0]] && mesh.points[t[1]] == startPositions[t[1]] &&
+          mesh.points[t[2]] == startPositions[t[2]])
+      {
+        continue;
+      }
+      const AxisAlignedBox box = sweptBox(f);
+      for (std::size_t b = 0; b < components; ++b)
+      {
+        if (changed[b] && box.Overlaps(componentBox[b]))
+        {
+          for (const auto v : t)
+          {
+            sendBack(v);
+          }
+          break;
+        }
+      }
+    }
+    return back;
+  };
+
   std::size_t undone = 0;
   for (const auto v : undoInvertedComponents())
   {
     ++undone;
     queueAround(v); // the component is back, but what moved around it may now cut it
   }
-  while (!queries.empty())
+  while (true)
   {
+    if (queries.empty())
+    {
+      // Settled: last, whether a surface moved past a component.
+      const std::vector<std::uint32_t> back = undoNestingChanges();
+      undone += back.size();
+      for (const auto v : back)
+      {
+        queueAround(v);
+      }
+      if (queries.empty())
+      {
+        break;
+      }
+    }
     std::sort(queries.begin(), queries.end());
     std::vector<std::uint32_t> bad;
     for (const auto t : queries)

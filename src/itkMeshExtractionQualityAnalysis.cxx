@@ -185,6 +185,75 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
   return result;
 }
 
+std::vector<std::int8_t>
+ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & topology)
+{
+  const std::size_t components = topology.numberOfComponents;
+  if (components < 2)
+  {
+    return {};
+  }
+  std::vector<std::int8_t>   parity(components, -1);
+  std::vector<std::uint32_t> vertex(components, std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint32_t> proper;
+  proper.reserve(mesh.triangles.size());
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    const std::uint32_t c = topology.triangleComponent[f];
+    if (vertex[c] == std::numeric_limits<std::uint32_t>::max())
+    {
+      vertex[c] = mesh.triangles[f][0];
+    }
+    if (MeshFaceIsProper(mesh, f))
+    {
+      proper.push_back(f);
+    }
+  }
+  TriangleAABBTree tree;
+  tree.Build(mesh, &proper);
+  ParallelForBlocks(components, 64, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t c = begin; c < end; ++c)
+    {
+      if ((c < topology.componentBoundaryLoops.size() && topology.componentBoundaryLoops[c] > 0) ||
+          vertex[c] == std::numeric_limits<std::uint32_t>::max())
+      {
+        continue;
+      }
+      const Vec3 & origin = mesh.points[vertex[c]];
+      for (unsigned int attempt = 0; attempt < 12; ++attempt)
+      {
+        // Directions of no special alignment with the grid, turned by the golden angle.
+        const double angle = 0.61 + 2.399963229728653 * attempt;
+        const double z = 0.83 - 0.13 * attempt;
+        const double r = std::sqrt(1.0 - z * z);
+        Vec3         direction;
+        direction[0] = r * std::cos(angle);
+        direction[1] = r * std::sin(angle);
+        direction[2] = z;
+        std::size_t crossings = 0;
+        bool        ambiguous = false;
+        tree.VisitRay(origin, direction, [&](std::uint32_t g) {
+          if (ambiguous || topology.triangleComponent[g] == c)
+          {
+            return;
+          }
+          const auto &         s = mesh.triangles[g];
+          const RayTriangleHit hit =
+            IntersectRayTriangle(origin, direction, mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]], 0.0);
+          ambiguous = hit.ambiguous;
+          crossings += hit.hit ? 1 : 0;
+        });
+        if (!ambiguous)
+        {
+          parity[c] = static_cast<std::int8_t>(crossings % 2);
+          break;
+        }
+      }
+    }
+  });
+  return parity;
+}
+
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> & found)
 {
