@@ -162,9 +162,13 @@ public:
     return s.str();
   }
 
+  /** How far, in voxels, a vertex may lie beyond the image's faces: SurfaceNets closes
+   * an object that touches the image border with nodes up to a voxel outside. */
+  static constexpr double OutsideMargin = 1.0;
+
   /** What is wrong with the inputs (empty if nothing): a missing image or one that is
    * not buffered, an empty mesh, a mesh without triangles, a face that is not a
-   * triangle, or a vertex outside the image. */
+   * triangle, or a vertex more than OutsideMargin voxels outside the image. */
   static std::string
   CheckInputs(const MeshType * mesh, const ImageType * image)
   {
@@ -222,8 +226,11 @@ public:
       bool       inside = true;
       for (unsigned int d = 0; d < 3; ++d)
       {
-        const double lo = static_cast<double>(region.GetIndex(d)) - 0.5;
-        const double hi = lo + static_cast<double>(region.GetSize(d));
+        // The image's extent (voxel centres +- half a voxel) and one voxel beyond it,
+        // where SurfaceNets closes objects that touch the border (nodes up to a
+        // voxel outside); the scale space is clamped at the image's faces.
+        const double lo = static_cast<double>(region.GetIndex(d)) - 0.5 - OutsideMargin;
+        const double hi = lo + static_cast<double>(region.GetSize(d)) + 2.0 * OutsideMargin;
         inside = inside && ci[d] >= lo && ci[d] <= hi;
       }
       if (!inside)
@@ -242,7 +249,8 @@ public:
       s << outside << " of " << mesh->GetNumberOfPoints() << " mesh vertices lie outside the image, e.g. vertex "
         << firstId << " at physical point " << first << " (continuous index " << firstIndex << ", image region "
         << region.GetIndex() << " + " << region.GetSize()
-        << "): the mesh must lie in the image, in the same physical coordinates (origin, spacing, direction)";
+        << "): the mesh must lie in the image (or within one voxel of its faces), in the same physical "
+           "coordinates (origin, spacing, direction)";
     }
     return s.str();
   }

@@ -87,8 +87,10 @@ namespace itk
  * rejected moves.
  *
  * The output has the input's point identifiers; faces are re-created by the swaps.
- * The input must be a triangle mesh inside the image; a missing image, an empty mesh,
- * a non-triangle face, a vertex outside the image or a parameter out of range raises
+ * The input must be a triangle mesh inside the image or within a voxel of its faces (a
+ * SurfaceNets mesh of an object that touches the image border closes it there, up to
+ * a voxel outside; the scale space is clamped at the faces); a missing image, an empty
+ * mesh, a non-triangle face, a vertex farther outside or a parameter out of range raises
  * an ExceptionObject that names it. The edge detection and smoothing are
  * multithreaded (NumberOfWorkUnits); the result does not depend on the number of
  * threads.
