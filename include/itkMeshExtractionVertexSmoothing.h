@@ -564,16 +564,16 @@ UndoFoldingMoves(IndexedTriangleMesh &      mesh,
     const std::vector<std::int8_t> nesting = ComponentNestingParity(mesh, topology);
     const std::size_t              components = topology.numberOfComponents;
     std::vector<std::uint8_t>      changed(components, 0);
-    bool                           any = false;
+    std::vector<std::uint32_t>     changedList;
     for (std::size_t c = 0; c < components && c < reference->nesting.size(); ++c)
     {
       if (nesting[c] >= 0 && reference->nesting[c] >= 0 && nesting[c] != reference->nesting[c])
       {
         changed[c] = 1;
-        any = true;
+        changedList.push_back(static_cast<std::uint32_t>(c));
       }
     }
-    if (!any)
+    if (changedList.empty())
     {
       return back;
     }
@@ -620,9 +620,9 @@ UndoFoldingMoves(IndexedTriangleMesh &      mesh,
         continue;
       }
       const AxisAlignedBox box = sweptBox(f);
-      for (std::size_t b = 0; b < components; ++b)
+      for (const std::uint32_t b : changedList)
       {
-        if (changed[b] && box.Overlaps(componentBox[b]))
+        if (box.Overlaps(componentBox[b]))
         {
           for (const auto v : t)
           {
