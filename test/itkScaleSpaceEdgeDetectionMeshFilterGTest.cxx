@@ -659,6 +659,41 @@ TEST(ScaleSpaceEdgeDetectionMeshFilter, BadInputRaisesClearExceptions)
   const std::string outside = run(ToMesh(ME::MakeGeodesicSphere(1, center + ME::MakeVec3(100, 0, 0), 5.0)), image, 2.0);
   EXPECT_NE(outside.find("lie outside the image"), std::string::npos) << outside;
   EXPECT_NE(outside.find("42 of 42"), std::string::npos) << outside;
+  // Up to OutsideMargin (one voxel) beyond the image's faces, where SurfaceNets closes
+  // objects cut by the border, is accepted; farther is not.
+  for (const double lowest : { -1.4, -1.6 })
+  {
+    ME::IndexedTriangleMesh near = ME::MakeGeodesicSphere(1, ME::MakeVec3(5.0, 12.0, 12.0), 4.0);
+    double                  lowestX = near.points[0][0];
+    for (const auto & q : near.points)
+    {
+      lowestX = std::min(lowestX, q[0]);
+    }
+    for (auto & q : near.points)
+    {
+      itk::ContinuousIndex<double, 3> index;
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        index[d] = q[d] + (d == 0 ? lowest - lowestX : 0.0);
+      }
+      ImageType::PointType physical;
+      image->TransformContinuousIndexToPhysicalPoint(index, physical);
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        q[d] = physical[d];
+      }
+    }
+    const std::string text = run(ToMesh(near), image, 2.0);
+    if (lowest > -1.5)
+    {
+      EXPECT_EQ(text, "") << lowest;
+    }
+    else
+    {
+      EXPECT_NE(text.find("lie outside the image"), std::string::npos) << lowest << ": " << text;
+      EXPECT_NE(text.find("within one voxel"), std::string::npos) << text;
+    }
+  }
 
   auto quad = MeshType::New();
   for (unsigned int i = 0; i < 4; ++i)
