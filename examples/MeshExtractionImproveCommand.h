@@ -91,7 +91,9 @@ PrintUndoneMoves(itk::SizeValueType undone)
 {
   if (undone > 0)
   {
-    std::cout << "  " << undone << " vertex moves undone where the surface would have cut through itself or folded\n";
+    std::cout << "  " << undone
+              << " vertex moves undone where the surface would have cut through itself, folded, or collapsed or passed "
+                 "a component\n";
   }
 }
 
