@@ -121,6 +121,36 @@ ComputeValueStatistics(std::vector<double> values, double lower, double upper, u
   return s;
 }
 
+namespace
+{
+/** The parity (0 or 1) of the crossings of the ray origin + t direction, t > 0, with
+ * the triangles of `tree` that skip(g) does not exclude; -1 if it grazes an edge or a
+ * vertex of one (IntersectRayTriangle's ambiguous hit). */
+template <typename TSkip>
+int
+RayCrossingParity(const IndexedTriangleMesh & mesh,
+                  const TriangleAABBTree &    tree,
+                  const Vec3 &                origin,
+                  const Vec3 &                direction,
+                  TSkip &&                    skip)
+{
+  std::size_t crossings = 0;
+  bool        ambiguous = false;
+  tree.VisitRay(origin, direction, [&](std::uint32_t g) {
+    if (ambiguous || skip(g))
+    {
+      return;
+    }
+    const auto &         s = mesh.triangles[g];
+    const RayTriangleHit hit =
+      IntersectRayTriangle(origin, direction, mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]], 0.0);
+    ambiguous = hit.ambiguous;
+    crossings += hit.hit ? 1 : 0;
+  });
+  return ambiguous ? -1 : static_cast<int>(crossings % 2);
+}
+} // namespace
+
 std::vector<int>
 ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance)
 {
@@ -161,22 +191,10 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
           direction = normal + (u * std::cos(angle) + w * std::sin(angle)) * (0.15 + 0.05 * attempt);
           direction *= 1.0 / Norm(direction);
         }
-        std::size_t crossings = 0;
-        bool        ambiguous = false;
-        tree.VisitRay(origin, direction, [&](std::uint32_t g) {
-          if (g == f || ambiguous)
-          {
-            return;
-          }
-          const auto &         s = mesh.triangles[g];
-          const RayTriangleHit hit =
-            IntersectRayTriangle(origin, direction, mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]], 0.0);
-          ambiguous = hit.ambiguous;
-          crossings += hit.hit ? 1 : 0;
-        });
-        if (!ambiguous)
+        const int parity = RayCrossingParity(mesh, tree, origin, direction, [f](std::uint32_t g) { return g == f; });
+        if (parity >= 0)
         {
-          result[f] = (crossings % 2 == 0) ? 1 : -1;
+          result[f] = parity == 0 ? 1 : -1;
           break;
         }
       }
@@ -230,22 +248,12 @@ ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & to
         direction[0] = r * std::cos(angle);
         direction[1] = r * std::sin(angle);
         direction[2] = z;
-        std::size_t crossings = 0;
-        bool        ambiguous = false;
-        tree.VisitRay(origin, direction, [&](std::uint32_t g) {
-          if (ambiguous || topology.triangleComponent[g] == c)
-          {
-            return;
-          }
-          const auto &         s = mesh.triangles[g];
-          const RayTriangleHit hit =
-            IntersectRayTriangle(origin, direction, mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]], 0.0);
-          ambiguous = hit.ambiguous;
-          crossings += hit.hit ? 1 : 0;
+        const int p = RayCrossingParity(mesh, tree, origin, direction, [&topology, c](std::uint32_t g) {
+          return topology.triangleComponent[g] == c;
         });
-        if (!ambiguous)
+        if (p >= 0)
         {
-          parity[c] = static_cast<std::int8_t>(crossings % 2);
+          parity[c] = static_cast<std::int8_t>(p);
           break;
         }
       }
