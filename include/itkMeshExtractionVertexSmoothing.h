@@ -20,6 +20,7 @@
 
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMeshExtractionTriangleGeometry.h"
@@ -438,6 +439,99 @@ MakeComponentReference(const IndexedTriangleMesh & mesh, const MeshTopology & to
   return r;
 }
 
+/** The components whose ComponentNestingParity the move of every vertex of `mesh`
+ * from startPositions to mesh.points can have changed, in increasing order. A
+ * component's parity is that of one of its vertices v (the first of its first
+ * triangle, as ComponentNestingParity takes it) against the other components. Along
+ * the straight path from start to end it changes only where v passes through a
+ * triangle T of another component, or T through v, so then v or T moved and the box
+ * of v's path overlaps the box of T's start and end: a component for which no such
+ * T exists keeps its parity. A pass over the triangles against the components'
+ * vertex boxes sorted along x: far cheaper than ComponentNestingParity's tree. */
+inline std::vector<std::uint32_t>
+ComponentsAMoveMayHavePassed(const IndexedTriangleMesh & mesh,
+                             const MeshTopology &        topology,
+                             const std::vector<Vec3> &   startPositions)
+{
+  constexpr std::uint32_t     none = std::numeric_limits<std::uint32_t>::max();
+  const std::size_t           components = topology.numberOfComponents;
+  std::vector<std::uint32_t>  vertex(components, none);
+  std::vector<AxisAlignedBox> path(components);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    const std::uint32_t c = topology.triangleComponent[f];
+    if (vertex[c] == none)
+    {
+      vertex[c] = mesh.triangles[f][0];
+      path[c].Add(startPositions[vertex[c]]);
+      path[c].Add(mesh.points[vertex[c]]);
+    }
+  }
+  std::vector<std::uint32_t> order;
+  double                     widest = 0.0;
+  for (std::uint32_t c = 0; c < components; ++c)
+  {
+    if (vertex[c] != none)
+    {
+      order.push_back(c);
+      widest = std::max(widest, path[c].upper[0] - path[c].lower[0]);
+    }
+  }
+  std::sort(order.begin(), order.end(), [&path](std::uint32_t a, std::uint32_t b) {
+    return path[a].lower[0] < path[b].lower[0] || (path[a].lower[0] == path[b].lower[0] && a < b);
+  });
+  std::vector<double> lowerX(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    lowerX[i] = path[order[i]].lower[0];
+  }
+  constexpr std::size_t                   blockSize = 8192;
+  std::vector<std::vector<std::uint32_t>> found((mesh.triangles.size() + blockSize - 1) / blockSize);
+  ParallelForBlocks(mesh.triangles.size(), blockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      const auto &   t = mesh.triangles[f];
+      AxisAlignedBox box;
+      bool           moved = false;
+      for (const auto v : t)
+      {
+        box.Add(startPositions[v]);
+        box.Add(mesh.points[v]);
+        moved = moved || mesh.points[v] != startPositions[v];
+      }
+      const std::uint32_t own = topology.triangleComponent[f];
+      for (auto i = static_cast<std::size_t>(std::lower_bound(lowerX.begin(), lowerX.end(), box.lower[0] - widest) -
+                                             lowerX.begin());
+           i < order.size() && lowerX[i] <= box.upper[0];
+           ++i)
+      {
+        const std::uint32_t c = order[i];
+        if (c != own && (moved || mesh.points[vertex[c]] != startPositions[vertex[c]]) && box.Overlaps(path[c]))
+        {
+          found[block].push_back(c);
+        }
+      }
+    }
+  });
+  std::vector<std::uint8_t> flagged(components, 0);
+  for (const auto & list : found)
+  {
+    for (const auto c : list)
+    {
+      flagged[c] = 1;
+    }
+  }
+  std::vector<std::uint32_t> result;
+  for (std::uint32_t c = 0; c < components; ++c)
+  {
+    if (flagged[c])
+    {
+      result.push_back(c);
+    }
+  }
+  return result;
+}
+
 /** A closed component that a series of steps shrinks below this fraction of its
  * volume before the first (ComponentReference) goes back (UndoFoldingMoves). */
 constexpr double CollapsedComponentVolumeFraction = 1e-3;
@@ -557,7 +651,8 @@ UndoFoldingMoves(IndexedTriangleMesh &      mesh,
   // of other components whose boxes (before and after) overlap theirs.
   auto undoNestingChanges = [&]() {
     std::vector<std::uint32_t> back;
-    if (!reference || reference->nesting.empty() || mesh.points == startPositions)
+    if (!reference || reference->nesting.empty() || mesh.points == startPositions ||
+        ComponentsAMoveMayHavePassed(mesh, topology, startPositions).empty())
     {
       return back;
     }

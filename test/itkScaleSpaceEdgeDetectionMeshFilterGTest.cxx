@@ -423,6 +423,18 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresASurfaceThatMovedPastASmal
   }
   const std::vector<Vec3> moved = mesh.points;
   ASSERT_TRUE(ME::FindSelfIntersections(mesh).empty());
+  // The cheap filter that lets most steps skip the parity test names the small sphere.
+  const std::vector<std::uint32_t> mayHavePassed = ME::ComponentsAMoveMayHavePassed(mesh, topology, start);
+  EXPECT_NE(std::find(mayHavePassed.begin(), mayHavePassed.end(), 1u), mayHavePassed.end());
+  {
+    // Only the far side moving: nothing can have passed the small sphere.
+    ME::IndexedTriangleMesh farSide = mesh;
+    for (std::size_t i = 0; i < farSide.points.size(); ++i)
+    {
+      farSide.points[i] = i < n && start[i][0] < center[0] ? moved[i] : start[i];
+    }
+    EXPECT_TRUE(ME::ComponentsAMoveMayHavePassed(farSide, topology, start).empty());
+  }
 
   // Without the reference, nothing seems wrong.
   EXPECT_EQ(ME::UndoFoldingMoves(mesh, topology, start, 1e-6), 0u);
