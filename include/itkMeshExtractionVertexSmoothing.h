@@ -559,7 +559,9 @@ constexpr double CollapsedComponentVolumeFraction = 1e-3;
  * surface moved past it in one step, leaving no intersection behind, so that its
  * triangles now face the wrong way), it goes back, and so do the moved triangles of
  * the other components whose boxes, before and after the step, overlap its own.
- * Returns the number of vertices moved back.
+ * The parity test (a tree and a ray per component) runs only if
+ * ComponentsAMoveMayHavePassed names a component. Returns the number of vertices
+ * moved back.
  * \ingroup MeshExtraction */
 inline std::size_t
 UndoFoldingMoves(IndexedTriangleMesh &      mesh,
