@@ -1022,12 +1022,7 @@ TEST(StressRuns, DISABLED_RandomSmoothVolumes)
 {
   unsigned int first = 0;
   unsigned int last = 100;
-  if (const char * seeds = std::getenv("MESHEXTRACTION_STRESS_SEEDS"))
-  {
-    std::istringstream in(seeds);
-    char               comma = 0;
-    in >> first >> comma >> last;
-  }
+  StressSeeds(first, last);
   std::map<std::string, int> failures;
   std::map<std::string, int> runs;
   auto                       check = [&](const std::string & what, bool ok, unsigned int seed) {

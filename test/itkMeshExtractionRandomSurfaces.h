@@ -21,6 +21,9 @@
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
+#include <cstdlib>
+#include <sstream>
+
 namespace MeshExtractionTest
 {
 /** The SurfaceNets mesh of MakeRandomSmoothVolume(seed), a valid closed surface with
@@ -46,6 +49,18 @@ RandomSurfaceNetsMesh(unsigned int seed)
     return nullptr;
   }
   return extract->GetOutput();
+}
+/** The seed range [first, last) of the stress runs: MESHEXTRACTION_STRESS_SEEDS=A,B
+ * if set, else the defaults given. */
+inline void
+StressSeeds(unsigned int & first, unsigned int & last)
+{
+  if (const char * seeds = std::getenv("MESHEXTRACTION_STRESS_SEEDS"))
+  {
+    std::istringstream in(seeds);
+    char               comma = 0;
+    in >> first >> comma >> last;
+  }
 }
 } // namespace MeshExtractionTest
 

@@ -171,6 +171,22 @@ ExceptionText(const std::function<void()> & run)
   }
   return std::string();
 }
+/** `mesh` with the triangles and points of `other` appended. */
+void
+Append(ME::IndexedTriangleMesh & mesh, const ME::IndexedTriangleMesh & other)
+{
+  const auto offset = static_cast<std::uint32_t>(mesh.points.size());
+  mesh.points.insert(mesh.points.end(), other.points.begin(), other.points.end());
+  for (auto t : other.triangles)
+  {
+    for (auto & v : t)
+    {
+      v += offset;
+    }
+    mesh.triangles.push_back(t);
+  }
+}
+
 } // namespace
 
 // --- the pieces -----------------------------------------------------------------
@@ -327,17 +343,7 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresAComponentTurnedInsideOut)
   // A second, untouched component, and a third that only moves outward.
   for (const double x : { 30.0, 50.0 })
   {
-    const ME::IndexedTriangleMesh other = ME::MakeGeodesicSphere(1, ME::MakeVec3(x, 10.0, 10.0), 3.0);
-    const auto                    offset = static_cast<std::uint32_t>(mesh.points.size());
-    mesh.points.insert(mesh.points.end(), other.points.begin(), other.points.end());
-    for (auto t : other.triangles)
-    {
-      for (auto & v : t)
-      {
-        v += offset;
-      }
-      mesh.triangles.push_back(t);
-    }
+    Append(mesh, ME::MakeGeodesicSphere(1, ME::MakeVec3(x, 10.0, 10.0), 3.0));
   }
   const ME::MeshTopology  topology = ME::BuildMeshTopology(mesh);
   const std::vector<Vec3> start = mesh.points;
@@ -363,25 +369,6 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresAComponentTurnedInsideOut)
     EXPECT_EQ(mesh.points[i], i < n ? start[i] : moved[i]) << i;
   }
 }
-
-namespace
-{
-/** `mesh` with the triangles and points of `other` appended. */
-void
-Append(ME::IndexedTriangleMesh & mesh, const ME::IndexedTriangleMesh & other)
-{
-  const auto offset = static_cast<std::uint32_t>(mesh.points.size());
-  mesh.points.insert(mesh.points.end(), other.points.begin(), other.points.end());
-  for (auto t : other.triangles)
-  {
-    for (auto & v : t)
-    {
-      v += offset;
-    }
-    mesh.triangles.push_back(t);
-  }
-}
-} // namespace
 
 TEST(ScaleSpaceEdgeDetection, ComponentNestingParityCountsTheSurfacesAroundEachComponent)
 {

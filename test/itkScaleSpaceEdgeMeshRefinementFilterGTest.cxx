@@ -468,6 +468,24 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, PrintSelfNamesEveryParameter)
   EXPECT_EQ(ME::RefinementOperationAbbreviation(Operation::Smoothing), "S");
 }
 
+namespace
+{
+/** The refinement of `input` (RandomSurfaceNetsMesh(seed)) against its own image:
+ * maximum deviation 2, at most 3 cycles; not yet updated. */
+FilterType::Pointer
+RandomVolumeRefinement(unsigned int seed, const MeshType * input)
+{
+  double     iso = 0.0;
+  const auto image = MeshExtractionTest::MakeRandomSmoothVolume(seed, iso);
+  auto       filter = FilterType::New();
+  filter->SetInput(input);
+  filter->SetInputImage(image);
+  filter->SetMaximumDeviation(2.0);
+  filter->SetMaximumNumberOfCycles(3);
+  return filter;
+}
+} // namespace
+
 TEST(ScaleSpaceEdgeMeshRefinementFilter, RefinesSurfaceNetsMeshesOfObjectsCutByTheImageBorder)
 {
   // SurfaceNets meshes of smooth random volumes whose objects touch the image border
@@ -480,13 +498,7 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, RefinesSurfaceNetsMeshesOfObjectsCutByT
   {
     const auto input = MeshExtractionTest::RandomSurfaceNetsMesh(seed);
     ASSERT_NE(input, nullptr);
-    double     iso = 0.0;
-    const auto image = MeshExtractionTest::MakeRandomSmoothVolume(seed, iso);
-    auto       filter = FilterType::New();
-    filter->SetInput(input);
-    filter->SetInputImage(image);
-    filter->SetMaximumDeviation(2.0);
-    filter->SetMaximumNumberOfCycles(3);
+    const auto filter = RandomVolumeRefinement(seed, input);
     ASSERT_NO_THROW(filter->Update()) << "seed " << seed;
     const auto before = Analyze(input);
     const auto report = Analyze(filter->GetOutput());
@@ -507,12 +519,7 @@ TEST(StressRuns, DISABLED_RefinedRandomSmoothVolumes)
 {
   unsigned int first = 0;
   unsigned int last = 300;
-  if (const char * seeds = std::getenv("MESHEXTRACTION_STRESS_SEEDS"))
-  {
-    std::istringstream in(seeds);
-    char               comma = 0;
-    in >> first >> comma >> last;
-  }
+  MeshExtractionTest::StressSeeds(first, last);
   unsigned int runs = 0;
   unsigned int failures = 0;
   for (unsigned int seed = first + (3 - first % 3) % 3; seed < last; seed += 3)
@@ -522,13 +529,7 @@ TEST(StressRuns, DISABLED_RefinedRandomSmoothVolumes)
     {
       continue;
     }
-    double     iso = 0.0;
-    const auto image = MeshExtractionTest::MakeRandomSmoothVolume(seed, iso);
-    auto       filter = FilterType::New();
-    filter->SetInput(input);
-    filter->SetInputImage(image);
-    filter->SetMaximumDeviation(2.0);
-    filter->SetMaximumNumberOfCycles(3);
+    const auto filter = RandomVolumeRefinement(seed, input);
     ++runs;
     try
     {
