@@ -62,6 +62,19 @@ Analyze(const TMesh * mesh, const TMesh * reference = nullptr, bool selfIntersec
   return calculator->GetReport();
 }
 
+/** The filter of the random-surface tests on `input`: weights, update mode and movement
+ * constraint chosen by the seed, so that a run of seeds covers every combination. */
+LaplacianType::Pointer
+SeededLaplacian(const QEMeshType * input, unsigned int seed)
+{
+  auto filter = LaplacianType::New();
+  filter->SetInput(input);
+  filter->SetWeights(AllWeights[seed % 5]);
+  filter->SetUpdateMode((seed / 5) % 2 ? Update::Immediate : Update::Batch);
+  filter->SetMovementConstraint(static_cast<Constraint>((seed / 10) % 3));
+  return filter;
+}
+
 template <typename TMesh>
 Vec3
 PointOf(const TMesh * mesh, typename TMesh::PointIdentifier id)
@@ -412,11 +425,7 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, GuardHoldsOnSurfaceNetsMeshesStoredIn
       continue; // nothing inside or nothing outside
     }
     ++tested;
-    auto filter = LaplacianType::New();
-    filter->SetInput(input);
-    filter->SetWeights(AllWeights[seed % 5]);
-    filter->SetUpdateMode((seed / 5) % 2 ? Update::Immediate : Update::Batch);
-    filter->SetMovementConstraint(static_cast<Constraint>((seed / 10) % 3));
+    auto filter = SeededLaplacian(input, seed);
     filter->Update();
     const auto report = Analyze<QEMeshType>(filter->GetOutput(), input, false);
     EXPECT_EQ(report.invertedTrianglesVersusReference, 0) << "seed " << seed;
@@ -437,11 +446,7 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, TenIterationsKeepEverySmallComponentW
   {
     const QEMeshType::Pointer input = RandomSurfaceNetsMesh(seed);
     ASSERT_NE(input, nullptr);
-    auto filter = LaplacianType::New();
-    filter->SetInput(input);
-    filter->SetWeights(AllWeights[seed % 5]);
-    filter->SetUpdateMode((seed / 5) % 2 ? Update::Immediate : Update::Batch);
-    filter->SetMovementConstraint(static_cast<Constraint>((seed / 10) % 3));
+    auto filter = SeededLaplacian(input, seed);
     filter->SetNumberOfIterations(10);
     filter->Update();
     const auto before = Analyze<QEMeshType>(input);
@@ -471,11 +476,7 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, TenIterationsKeepARandomSurfaceFreeOf
     ++tested;
     for (const bool prevent : { true, false })
     {
-      auto filter = LaplacianType::New();
-      filter->SetInput(input);
-      filter->SetWeights(AllWeights[seed % 5]);
-      filter->SetUpdateMode((seed / 5) % 2 ? Update::Immediate : Update::Batch);
-      filter->SetMovementConstraint(static_cast<Constraint>((seed / 10) % 3));
+      auto filter = SeededLaplacian(input, seed);
       filter->SetNumberOfIterations(10);
       filter->SetPreventSelfIntersections(prevent);
       filter->Update();
