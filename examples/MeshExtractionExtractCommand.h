@@ -59,6 +59,7 @@ struct ExtractSettings
   bool                            highQuality{};
   unsigned int                    rounds{};
   double                          convergedSwaps{};
+  double                          cellDilation{};
 };
 
 /** The settings of a default-constructed SurfaceNetsImageToMeshFilter (the pixel type
@@ -79,6 +80,7 @@ ExtractDefaults()
   s.highQuality = filter->GetHighQuality();
   s.rounds = filter->GetNumberOfImprovementRounds();
   s.convergedSwaps = filter->GetConvergedSwapFraction();
+  s.cellDilation = filter->GetImprovementCellDilation();
   return s;
 }
 
@@ -139,6 +141,7 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   filter->SetHighQuality(s.highQuality);
   filter->SetNumberOfImprovementRounds(s.rounds);
   filter->SetConvergedSwapFraction(s.convergedSwaps);
+  filter->SetImprovementCellDilation(s.cellDilation);
   if (s.threads > 0)
   {
     filter->SetNumberOfWorkUnits(s.threads);
@@ -263,6 +266,7 @@ RunExtract(const Arguments & args)
   }
   s.rounds = static_cast<unsigned int>(rounds);
   s.convergedSwaps = args.GetDouble("converged-swaps", s.convergedSwaps); // the filter checks the range
+  s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
   const long threads = args.GetInteger("threads", 0);
   if (threads < 0)
   {
@@ -372,6 +376,10 @@ MakeExtractCommand()
       "F",
       "--quality high stops its rounds when one swaps fewer than this fraction of the triangles (0: none)",
       DefaultText(defaults.convergedSwaps) },
+    { "cell-dilation",
+      "V",
+      "--quality high lets a node leave its cell by up to V voxels (0 to 0.5; 0: stay in the cell)",
+      DefaultText(defaults.cellDilation) },
     { "threads", "N", "work units (0: all cores)", "0" },
     { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
     { "report-json", "FILE", "write the report as JSON", "" },

@@ -1441,6 +1441,42 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityBeatsSnertOnCreasesAndHandlesKeepi
   }
 }
 
+TEST(SurfaceNetsImageToMeshFilter, HighQualityLetsNodesLeaveTheirCellsByHalfAVoxelForFewerSlivers)
+{
+  // The default ImprovementCellDilation (0.5 voxel) against 0.25 and 0 on the narrow
+  // cleft, where the surfaces of the cleft's two sides pin nodes near their cells'
+  // faces. Measured: mean q_angle 0.6596, 0.6289 and lower; triangles below q_angle 0.3
+  // none, 0.0125 %; mean vertex distance to the exact surface 0.0103, 0.0105 mm.
+  const Phantom p = MakePhantom(ME::PhantomShape::NarrowCleft);
+  auto          run = [&p](double dilation) {
+    auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+    filter->SetInput(p.image);
+    filter->SetInsideIsAboveIsoValue(false);
+    filter->SetHighQuality(true);
+    if (dilation >= 0.0)
+    {
+      filter->SetImprovementCellDilation(dilation);
+    }
+    filter->Update();
+    return QEMeshType::Pointer(filter->GetOutput());
+  };
+  EXPECT_EQ(itk::SurfaceNetsImageToMeshFilter<FloatImage>::New()->GetImprovementCellDilation(), 0.5);
+  const auto byDefault = run(-1.0);
+  const auto q = Measure(byDefault.GetPointer());
+  const auto quarter = Measure(run(0.25).GetPointer());
+  const auto inCell = Measure(run(0.0).GetPointer());
+  for (const auto * r : { &q, &quarter, &inCell })
+  {
+    EXPECT_TRUE(r->IsValidClosedSurface()) << Text(*r);
+    EXPECT_EQ(r->eulerCharacteristic, 2); // the cleft stays open
+  }
+  EXPECT_GT(q.qAngle.mean, quarter.qAngle.mean + 0.02);
+  EXPECT_GT(quarter.qAngle.mean, inCell.qAngle.mean);
+  EXPECT_EQ(q.fractionQAngleBelow03, 0.0);
+  EXPECT_GT(quarter.fractionQAngleBelow03, 0.0);
+  EXPECT_LE(Distance(byDefault.GetPointer(), p.surface).vertices.mean, 0.0125); // voxels (1 mm)
+}
+
 TEST(SurfaceNetsImageToMeshFilter, HighQualityDoesNotLetAFoldCloseOntoItself)
 {
   // A 5^3 patch of smoothed noise (from a random volume on which the high-quality
