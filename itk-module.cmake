@@ -15,6 +15,7 @@ itk_module(MeshExtraction
     ITKQuadEdgeMesh
     ITKQuadEdgeMeshFiltering
     ITKImageFunction
+    ITKImageGrid
     ITKImageIntensity
     ITKImageSources
     ITKImageNoise

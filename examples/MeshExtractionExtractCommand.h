@@ -60,6 +60,7 @@ struct ExtractSettings
   unsigned int                    rounds{};
   double                          convergedSwaps{};
   double                          cellDilation{};
+  bool                            isotropic{};
 };
 
 /** The settings of a default-constructed SurfaceNetsImageToMeshFilter (the pixel type
@@ -81,6 +82,7 @@ ExtractDefaults()
   s.rounds = filter->GetNumberOfImprovementRounds();
   s.convergedSwaps = filter->GetConvergedSwapFraction();
   s.cellDilation = filter->GetImprovementCellDilation();
+  s.isotropic = filter->GetResampleToIsotropicVoxels();
   return s;
 }
 
@@ -142,6 +144,7 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   filter->SetNumberOfImprovementRounds(s.rounds);
   filter->SetConvergedSwapFraction(s.convergedSwaps);
   filter->SetImprovementCellDilation(s.cellDilation);
+  filter->SetResampleToIsotropicVoxels(s.isotropic);
   if (s.threads > 0)
   {
     filter->SetNumberOfWorkUnits(s.threads);
@@ -151,6 +154,20 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   {
     labels = ReadImageFile<typename FilterType::LabelImageType>(s.labelImage);
     filter->SetLabelImage(labels);
+  }
+  if (s.isotropic)
+  {
+    const auto & spacing = image->GetSpacing();
+    const double smallest = std::min({ spacing[0], spacing[1], spacing[2] });
+    const double largest = std::max({ spacing[0], spacing[1], spacing[2] });
+    if (largest - smallest > 1e-6 * largest)
+    {
+      std::cerr << "  resampling to cubic voxels of " << smallest << " mm (from " << spacing << ")\n";
+    }
+    else
+    {
+      std::cerr << "  the voxels are cubic already: not resampled\n";
+    }
   }
   ReportProgress(filter.GetPointer(), "SurfaceNets");
   Stopwatch watch;
@@ -267,6 +284,7 @@ RunExtract(const Arguments & args)
   s.rounds = static_cast<unsigned int>(rounds);
   s.convergedSwaps = args.GetDouble("converged-swaps", s.convergedSwaps); // the filter checks the range
   s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
+  s.isotropic = s.isotropic || args.Has("isotropic");
   const long threads = args.GetInteger("threads", 0);
   if (threads < 0)
   {
@@ -380,6 +398,10 @@ MakeExtractCommand()
       "V",
       "--quality high lets a node leave its cell by up to V voxels (0 to 0.5; 0: stay in the cell)",
       DefaultText(defaults.cellDilation) },
+    { "isotropic",
+      "",
+      "resample to cubic voxels of the smallest spacing first: better shaped, more triangles on anisotropic voxels",
+      "" },
     { "threads", "N", "work units (0: all cores)", "0" },
     { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
     { "report-json", "FILE", "write the report as JSON", "" },

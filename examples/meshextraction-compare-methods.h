@@ -558,6 +558,17 @@ Methods()
       [](const ExtractionInput & in) {
         return RunSurfaceNets(in, Relaxation::Combined, [](SurfaceNetsFilterType * f) { f->SetHighQuality(true); });
       } },
+    { "sn-hq-iso",
+      "SurfaceNets HQ isotropic",
+      "as sn-hq, on the image resampled to cubic voxels of its smallest spacing (ResampleToIsotropicVoxels; "
+      "the same as sn-hq on cubic voxels)",
+      false,
+      [](const ExtractionInput & in) {
+        return RunSurfaceNets(in, Relaxation::Combined, [](SurfaceNetsFilterType * f) {
+          f->SetHighQuality(true);
+          f->SetResampleToIsotropicVoxels(true);
+        });
+      } },
   };
 }
 

@@ -157,7 +157,7 @@ public:
    * triangle are undone, so the output keeps every guarantee of plain SurfaceNets.
    * Needs triangles. On strongly anisotropic voxels (ratio above ~1.15) one node per
    * cell cannot be spaced evenly in physical space: quality stays below the
-   * isotropic figures (resample the image first for those). */
+   * isotropic figures unless the image is resampled first (ResampleToIsotropicVoxels). */
   itkSetMacro(HighQuality, bool);
   itkGetConstMacro(HighQuality, bool);
   itkBooleanMacro(HighQuality);
@@ -200,6 +200,23 @@ public:
   /** Distance (voxels) nodes keep from their cell's faces (default 0.01). */
   itkSetMacro(CellMargin, double);
   itkGetConstMacro(CellMargin, double);
+  /** Resample the input (and LabelImage) to cubic voxels of its smallest spacing before
+   * extracting (default off; nothing happens when the voxels are already cubic). One
+   * node per cell spaces the nodes as the voxels are spaced, so on anisotropic voxels
+   * the triangles are stretched along the longest spacing; this gives them the
+   * isotropic figures at the cost of more triangles. Greyscale values are interpolated
+   * linearly (ITK's ResampleImageFilter; integer pixels are truncated to the pixel
+   * type), label images by nearest neighbour. The grid starts at the buffered region's
+   * first voxel, with the input's direction, and ends at or before its last voxel. The
+   * linear interpolation moves the iso-surface by a fraction of a voxel, and can remove
+   * or join features of about one voxel. Measured with --quality high on the README's
+   * head CT (0.957 x 0.957 x 1.5 mm) at 300 HU: 916,592 triangles against 671,368, mean
+   * q_area 0.9657 against 0.9352, q_angle 0.7595 against 0.6647, triangles below q_angle
+   * 0.3 0.73 % against 1.74 %; on a sphere with 1 x 1 x 2 mm voxels q_angle 0.856 against
+   * 0.726. GetSurfaceNet() is then in the resampled grid's indices. */
+  itkSetMacro(ResampleToIsotropicVoxels, bool);
+  itkGetConstMacro(ResampleToIsotropicVoxels, bool);
+  itkBooleanMacro(ResampleToIsotropicVoxels);
   // The multithreaded stages use ProcessObject's NumberOfWorkUnits.
 
   /** After Update(): relaxation iterations run, the last largest relocation (voxels),
@@ -260,10 +277,23 @@ protected:
   GetGeometry(Matrix<double, 3, 3> & indexToPhysical, MeshExtraction::Vec3 & first) const;
   MeshExtraction::QuadSplit
   GetQuadSplit() const;
+  /** The images the stages read: the input and LabelImage, or their resampled copies
+   * (ResampleToIsotropicVoxels). */
+  const InputImageType *
+  GetSampledInput() const;
+  const LabelImageType *
+  GetSampledLabelImage() const;
 
 private:
   void
   VerifyParameters() const;
+  /** Throws unless `labels` has the grid of `input` (size, spacing, origin, direction). */
+  void
+  VerifyLabelImageGrid(const InputImageType * input, const LabelImageType * labels) const;
+  /** Makes the resampled copies of the input and LabelImage when
+   * ResampleToIsotropicVoxels asks for them (and the voxels are not cubic). */
+  void
+  ResampleInputs();
 
   double            m_IsoValue{ 0.0 };
   bool              m_InsideIsAboveIsoValue{ true };
@@ -285,6 +315,10 @@ private:
   double            m_ConvergedSwapFraction{ 0.001 };
   unsigned int      m_ImprovementIterations{ 4 };
   double            m_ImprovementCellDilation{ 0.5 };
+  bool              m_ResampleToIsotropicVoxels{ false };
+
+  typename InputImageType::ConstPointer m_SampledInput;       // while GenerateData runs
+  typename LabelImageType::ConstPointer m_SampledLabelImage;  // idem
 
   unsigned int  m_NumberOfIterations{ 0 };
   double        m_LastMaximumRelocation{ 0.0 };

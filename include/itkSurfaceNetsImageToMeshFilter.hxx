@@ -28,6 +28,8 @@
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMinimumMaximumImageCalculator.h"
+#include "itkNearestNeighborInterpolateImageFunction.h"
+#include "itkResampleImageFilter.h"
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
 
@@ -83,10 +85,28 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyLabelImageGrid(
+  const InputImageType * input,
+  const LabelImageType * labels) const
+{
+  if (labels->GetBufferedRegion().GetSize() != input->GetBufferedRegion().GetSize() ||
+      !labels->GetSpacing().GetVnlVector().is_equal(input->GetSpacing().GetVnlVector(), 1e-6) ||
+      labels->GetOrigin().EuclideanDistanceTo(input->GetOrigin()) > 1e-6 ||
+      !labels->GetDirection().GetVnlMatrix().is_equal(input->GetDirection().GetVnlMatrix(), 1e-6))
+  {
+    itkExceptionMacro("LabelImage must have the input's grid: size "
+                      << input->GetBufferedRegion().GetSize() << ", spacing " << input->GetSpacing() << ", origin "
+                      << input->GetOrigin() << "; it has size " << labels->GetBufferedRegion().GetSize()
+                      << ", spacing " << labels->GetSpacing() << ", origin " << labels->GetOrigin() << '.');
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCells()
 {
-  const InputImageType * input = this->GetInput();
-  const LabelImageType * labels = this->GetLabelImage();
+  const InputImageType * input = this->GetSampledInput();
+  const LabelImageType * labels = this->GetSampledLabelImage();
   const unsigned int     workUnits = this->GetNumberOfWorkUnits();
   auto                   index = [](const auto * image, const std::int64_t local[3]) {
     auto i = image->GetBufferedRegion().GetIndex();
@@ -104,16 +124,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
     MeshExtraction::SurfaceNetsClassificationStatistics stats;
     if (labels != nullptr)
     {
-      if (labels->GetBufferedRegion().GetSize() != input->GetBufferedRegion().GetSize() ||
-          !labels->GetSpacing().GetVnlVector().is_equal(input->GetSpacing().GetVnlVector(), 1e-6) ||
-          labels->GetOrigin().EuclideanDistanceTo(input->GetOrigin()) > 1e-6 ||
-          !labels->GetDirection().GetVnlMatrix().is_equal(input->GetDirection().GetVnlMatrix(), 1e-6))
-      {
-        itkExceptionMacro("LabelImage must have the input's grid: size "
-                          << input->GetBufferedRegion().GetSize() << ", spacing " << input->GetSpacing() << ", origin "
-                          << input->GetOrigin() << "; it has size " << labels->GetBufferedRegion().GetSize()
-                          << ", spacing " << labels->GetSpacing() << ", origin " << labels->GetOrigin() << '.');
-      }
+      this->VerifyLabelImageGrid(input, labels);
       stats = MeshExtraction::ClassifySurfaceCells(
         labels,
         MeshExtraction::SurfaceNetsVoxelRange<typename LabelImageType::PixelType>::FromLabel(label),
@@ -184,7 +195,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
   MeshExtraction::SurfaceNetsCellCache * cellCache)
 {
   using namespace MeshExtraction;
-  const InputImageType *          input = this->GetInput();
+  const InputImageType *          input = this->GetSampledInput();
   SurfaceNetsRelaxationParameters p;
   switch (relaxation)
   {
@@ -365,11 +376,98 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+auto
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetSampledInput() const -> const InputImageType *
+{
+  return m_SampledInput ? m_SampledInput.GetPointer()
+                        : static_cast<const InputImageType *>(this->ProcessObject::GetInput(0));
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+auto
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetSampledLabelImage() const
+  -> const LabelImageType *
+{
+  return m_SampledLabelImage ? m_SampledLabelImage.GetPointer()
+                             : static_cast<const LabelImageType *>(this->ProcessObject::GetInput("LabelImage"));
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ResampleInputs()
+{
+  m_SampledInput = nullptr;
+  m_SampledLabelImage = nullptr;
+  const InputImageType * input = this->GetInput();
+  const auto &           spacing = input->GetSpacing();
+  const double           smallest = std::min({ spacing[0], spacing[1], spacing[2] });
+  const double           largest = std::max({ spacing[0], spacing[1], spacing[2] });
+  if (!m_ResampleToIsotropicVoxels || largest - smallest <= 1e-6 * largest)
+  {
+    return;
+  }
+  const auto & region = input->GetBufferedRegion();
+  if constexpr (std::is_floating_point<InputPixelType>::value)
+  {
+    // Interpolation would spread a NaN to its neighbours: name the input's own voxel.
+    const InputPixelType * buffer = input->GetBufferPointer();
+    for (SizeValueType i = 0; i < region.GetNumberOfPixels(); ++i)
+    {
+      if (std::isnan(buffer[i]))
+      {
+        itkExceptionMacro("The input image has a NaN voxel at index " << input->ComputeIndex(i) << '.');
+      }
+    }
+  }
+  // The grid: cubic voxels of the smallest spacing from the buffer's first voxel,
+  // with the input's direction, as many as fit up to its last voxel.
+  typename InputImageType::SpacingType isotropic;
+  isotropic.Fill(smallest);
+  typename InputImageType::SizeType size;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    const double extent = static_cast<double>(region.GetSize()[d] - 1) * spacing[d];
+    size[d] = static_cast<SizeValueType>(std::floor(extent / smallest + 1e-9)) + 1;
+  }
+  typename InputImageType::PointType origin;
+  input->TransformIndexToPhysicalPoint(region.GetIndex(), origin);
+  auto resample = [&](const auto * image, bool nearest) {
+    using ImageType = std::remove_cv_t<std::remove_pointer_t<decltype(image)>>;
+    // A copy that shares the buffer, so that the resampling does not reach upstream.
+    auto source = ImageType::New();
+    source->Graft(image);
+    auto filter = ResampleImageFilter<ImageType, ImageType>::New();
+    filter->SetInput(source);
+    filter->SetOutputSpacing(isotropic);
+    filter->SetOutputOrigin(origin);
+    filter->SetOutputDirection(input->GetDirection());
+    filter->SetSize(size);
+    if (nearest)
+    {
+      filter->SetInterpolator(NearestNeighborInterpolateImageFunction<ImageType, double>::New());
+    }
+    filter->SetNumberOfWorkUnits(this->GetNumberOfWorkUnits());
+    filter->Update();
+    return typename ImageType::ConstPointer(filter->GetOutput());
+  };
+  const LabelImageType * labels = this->GetLabelImage();
+  if (labels != nullptr)
+  {
+    this->VerifyLabelImageGrid(input, labels);
+  }
+  m_SampledInput = resample(input, m_ClassifyByLabel);
+  if (labels != nullptr)
+  {
+    m_SampledLabelImage = resample(labels, true);
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetGeometry(Matrix<double, 3, 3> & M,
                                                                                  MeshExtraction::Vec3 & first) const
 {
-  const auto * input = static_cast<const InputImageType *>(this->ProcessObject::GetInput(0));
+  const InputImageType * input = this->GetSampledInput();
   for (unsigned int r = 0; r < 3; ++r)
   {
     for (unsigned int c = 0; c < 3; ++c)
@@ -556,6 +654,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
     itkExceptionMacro("No input image: call SetInput() first.");
   }
   this->VerifyParameters();
+  // Resampled copies, when asked for, replace the inputs for every stage below. They
+  // are released at the end (after an exception, by the next run or the filter's end).
+  this->ResampleInputs();
   RelaxationEnum relaxation = m_Relaxation;
   const bool     haveGreyscale = !m_ClassifyByLabel;
   if (relaxation == RelaxationEnum::Automatic)
@@ -641,6 +742,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   const MeshExtraction::Vec3 * made =
     !checkedPoints.empty() ? checkedPoints.data() : (!points.empty() ? points.data() : nullptr);
   this->MakeOutputMesh(polygons, polygonSize, m_HighQuality ? nullptr : made);
+  m_SampledInput = nullptr;
+  m_SampledLabelImage = nullptr;
   this->UpdateProgress(1.0f);
 }
 
@@ -668,6 +771,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "NumberOfImprovementRounds: " << m_NumberOfImprovementRounds << '\n';
   os << indent << "ImprovementIterations: " << m_ImprovementIterations << '\n';
   os << indent << "ImprovementCellDilation: " << m_ImprovementCellDilation << '\n';
+  os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
   os << indent << "ConvergedSwapFraction: " << m_ConvergedSwapFraction << '\n';
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << '\n';
   os << indent << "NumberOfRoundsPerformed: " << m_NumberOfRoundsPerformed << '\n';
