@@ -21,8 +21,11 @@
 #include "itkMeshExtractionGeodesicSphere.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkImage.h"
+#include "itkMacro.h"
 #include "itkMesh.h"
 #include "itkQuadEdgeMesh.h"
+
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
@@ -35,6 +38,24 @@
  * in code, in the module's flat form, and converted to ITK meshes. */
 namespace MeshExtractionTest
 {
+/** The description of the itk::ExceptionObject that `run()` throws; a test failure
+ * and "" when it throws none. */
+template <typename TFunction>
+std::string
+ExceptionDescription(TFunction && run)
+{
+  try
+  {
+    run();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    return e.GetDescription();
+  }
+  ADD_FAILURE() << "no itk::ExceptionObject was thrown";
+  return std::string();
+}
+
 using itk::MeshExtraction::IndexedTriangleMesh;
 using itk::MeshExtraction::MakeVec3;
 using itk::MeshExtraction::Vec3;
