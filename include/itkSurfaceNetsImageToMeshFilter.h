@@ -317,8 +317,8 @@ private:
   double            m_ImprovementCellDilation{ 0.5 };
   bool              m_ResampleToIsotropicVoxels{ false };
 
-  typename InputImageType::ConstPointer m_SampledInput;       // while GenerateData runs
-  typename LabelImageType::ConstPointer m_SampledLabelImage;  // idem
+  typename InputImageType::ConstPointer m_SampledInput;      // while GenerateData runs
+  typename LabelImageType::ConstPointer m_SampledLabelImage; // idem
 
   unsigned int  m_NumberOfIterations{ 0 };
   double        m_LastMaximumRelocation{ 0.0 };

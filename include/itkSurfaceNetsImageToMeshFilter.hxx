@@ -96,8 +96,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyLabel
   {
     itkExceptionMacro("LabelImage must have the input's grid: size "
                       << input->GetBufferedRegion().GetSize() << ", spacing " << input->GetSpacing() << ", origin "
-                      << input->GetOrigin() << "; it has size " << labels->GetBufferedRegion().GetSize()
-                      << ", spacing " << labels->GetSpacing() << ", origin " << labels->GetOrigin() << '.');
+                      << input->GetOrigin() << "; it has size " << labels->GetBufferedRegion().GetSize() << ", spacing "
+                      << labels->GetSpacing() << ", origin " << labels->GetOrigin() << '.');
   }
 }
 

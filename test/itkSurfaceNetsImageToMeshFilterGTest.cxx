@@ -186,21 +186,41 @@ MakePhantom(ME::PhantomShape shape)
   return MakePhantom(shape, ME::DefaultPhantomGrid(shape));
 }
 
-/** Marching cubes (ITK's BinaryMask3DMeshSource) on the phantom's mask. */
+/** SurfaceNets of the phantom's distance map (the inside below 0), the filter set up
+ * further by `configure(filter)`. */
+template <typename TConfigure>
 QEMeshType::Pointer
-MarchingCubes(const Phantom & p)
+ExtractPhantom(const Phantom & p, TConfigure && configure)
+{
+  auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+  filter->SetInput(p.image);
+  filter->SetInsideIsAboveIsoValue(false);
+  configure(filter.GetPointer());
+  filter->Update();
+  return filter->GetOutput();
+}
+
+/** The phantom's mask (1 inside), on its grid. */
+MaskImage::Pointer
+PhantomMask(const Phantom & p)
 {
   auto mask = MakeImage<MaskImage>(1, 1, 1);
   mask->SetRegions(p.image->GetBufferedRegion());
   mask->CopyInformation(p.image);
   mask->Allocate();
-  const std::size_t n = p.image->GetBufferedRegion().GetNumberOfPixels();
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < p.image->GetBufferedRegion().GetNumberOfPixels(); ++i)
   {
     mask->GetBufferPointer()[i] = p.image->GetBufferPointer()[i] <= 0.0f ? 1 : 0;
   }
+  return mask;
+}
+
+/** Marching cubes (ITK's BinaryMask3DMeshSource) on the phantom's mask. */
+QEMeshType::Pointer
+MarchingCubes(const Phantom & p)
+{
   auto mc = itk::BinaryMask3DMeshSource<MaskImage, QEMeshType>::New();
-  mc->SetInput(mask);
+  mc->SetInput(PhantomMask(p));
   mc->SetObjectValue(1);
   mc->Update();
   return mc->GetOutput();
@@ -1198,15 +1218,8 @@ TEST(SurfaceNetsImageToMeshFilter, SegmentationRelaxedTowardTheGreyscaleIsoSurfa
   // The net from a mask of the sphere, relaxed toward the distance map's iso-surface,
   // lands where the greyscale-only SNERT does.
   const Phantom p = MakePhantom(ME::PhantomShape::Sphere);
-  auto          mask = MakeImage<MaskImage>(1, 1, 1);
-  mask->SetRegions(p.image->GetBufferedRegion());
-  mask->CopyInformation(p.image);
-  mask->Allocate();
-  for (std::size_t i = 0; i < p.image->GetBufferedRegion().GetNumberOfPixels(); ++i)
-  {
-    mask->GetBufferPointer()[i] = p.image->GetBufferPointer()[i] <= 0.0f ? 1 : 0;
-  }
-  auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
+  const auto    mask = PhantomMask(p);
+  auto          filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
   filter->SetInput(p.image);
   filter->SetLabelImage(mask);
   filter->SetInsideIsAboveIsoValue(false);
@@ -1449,16 +1462,13 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityLetsNodesLeaveTheirCellsByHalfAVox
   // none, 0.0125 %; mean vertex distance to the exact surface 0.0103, 0.0105 mm.
   const Phantom p = MakePhantom(ME::PhantomShape::NarrowCleft);
   auto          run = [&p](double dilation) {
-    auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
-    filter->SetInput(p.image);
-    filter->SetInsideIsAboveIsoValue(false);
-    filter->SetHighQuality(true);
-    if (dilation >= 0.0)
-    {
-      filter->SetImprovementCellDilation(dilation);
-    }
-    filter->Update();
-    return QEMeshType::Pointer(filter->GetOutput());
+    return ExtractPhantom(p, [dilation](auto * filter) {
+      filter->SetHighQuality(true);
+      if (dilation >= 0.0)
+      {
+        filter->SetImprovementCellDilation(dilation);
+      }
+    });
   };
   EXPECT_EQ(itk::SurfaceNetsImageToMeshFilter<FloatImage>::New()->GetImprovementCellDilation(), 0.5);
   const auto byDefault = run(-1.0);
@@ -1608,21 +1618,6 @@ SphereOnAnisotropicVoxels()
   grid.spacing[2] = 2.0;
   return MakePhantom(ME::PhantomShape::Sphere, grid);
 }
-
-/** The phantom's mask (1 inside), on its grid. */
-MaskImage::Pointer
-PhantomMask(const Phantom & p)
-{
-  auto mask = MakeImage<MaskImage>(1, 1, 1);
-  mask->SetRegions(p.image->GetBufferedRegion());
-  mask->CopyInformation(p.image);
-  mask->Allocate();
-  for (std::size_t i = 0; i < p.image->GetBufferedRegion().GetNumberOfPixels(); ++i)
-  {
-    mask->GetBufferPointer()[i] = p.image->GetBufferPointer()[i] <= 0.0f ? 1 : 0;
-  }
-  return mask;
-}
 } // namespace
 
 TEST(SurfaceNetsImageToMeshFilter, ResamplingToIsotropicVoxelsGivesAnisotropicImagesTheIsotropicFigures)
@@ -1633,13 +1628,10 @@ TEST(SurfaceNetsImageToMeshFilter, ResamplingToIsotropicVoxelsGivesAnisotropicIm
   // (measured q_area 0.989, q_angle 0.856, none below 0.3, 0.017 mm).
   const Phantom p = SphereOnAnisotropicVoxels();
   auto          run = [&p](bool resample, bool high) {
-    auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
-    filter->SetInput(p.image);
-    filter->SetInsideIsAboveIsoValue(false);
-    filter->SetHighQuality(high);
-    filter->SetResampleToIsotropicVoxels(resample);
-    filter->Update();
-    return QEMeshType::Pointer(filter->GetOutput());
+    return ExtractPhantom(p, [=](auto * filter) {
+      filter->SetHighQuality(high);
+      filter->SetResampleToIsotropicVoxels(resample);
+    });
   };
   const auto stretched = run(false, true);
   const auto cubic = run(true, true);
@@ -1698,12 +1690,8 @@ TEST(SurfaceNetsImageToMeshFilter, ResamplingToIsotropicVoxelsLeavesCubicVoxelsA
 {
   const Phantom p = MakePhantom(ME::PhantomShape::Ellipsoid);
   auto          run = [&p](bool resample) {
-    auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
-    filter->SetInput(p.image);
-    filter->SetInsideIsAboveIsoValue(false);
-    filter->SetResampleToIsotropicVoxels(resample);
-    filter->Update();
-    return ME::MakeIndexedTriangleMesh(*filter->GetOutput());
+    return ME::MakeIndexedTriangleMesh(
+      *ExtractPhantom(p, [resample](auto * filter) { filter->SetResampleToIsotropicVoxels(resample); }));
   };
   const auto off = run(false);
   const auto on = run(true);
@@ -1715,14 +1703,11 @@ TEST(SurfaceNetsImageToMeshFilter, ResamplingToIsotropicVoxelsNamesTheInputsOwnN
 {
   // Interpolation would spread the NaN over its neighbours in the resampled grid: the
   // error names the voxel of the input.
-  Phantom p = SphereOnAnisotropicVoxels();
+  Phantom               p = SphereOnAnisotropicVoxels();
   FloatImage::IndexType nan = { { 5, 6, 7 } };
   p.image->SetPixel(nan, std::numeric_limits<float>::quiet_NaN());
-  auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
-  filter->SetInput(p.image);
-  filter->SetInsideIsAboveIsoValue(false);
-  filter->SetResampleToIsotropicVoxels(true);
-  const std::string message = ExceptionDescription([&] { filter->Update(); });
+  const std::string message = ExceptionDescription(
+    [&p] { ExtractPhantom(p, [](auto * filter) { filter->SetResampleToIsotropicVoxels(true); }); });
   EXPECT_NE(message.find("NaN voxel at index [5, 6, 7]"), std::string::npos) << message;
 }
 
