@@ -33,6 +33,9 @@
 #include "itkQuadrilateralCell.h"
 #include "itkTriangleCell.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace itk
 {
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
