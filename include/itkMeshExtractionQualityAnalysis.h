@@ -166,9 +166,15 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
 MeshExtraction_EXPORT std::vector<int>
 ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance = 1e-6);
 
+/** For every component of `mesh` (numbered as in `topology`), the vertex its nesting
+ * rays start from (ComponentNestingParity): the first vertex of its first triangle;
+ * UINT32_MAX for a component without triangles. */
+MeshExtraction_EXPORT std::vector<std::uint32_t>
+                      ComponentRayVertices(const IndexedTriangleMesh & mesh, const MeshTopology & topology);
+
 /** For every component of `mesh` (numbered as in `topology`), whether it lies inside
  * an odd (1) or even (0) number of the other components: the parity of the crossings
- * of a ray from one of its vertices with the other components' triangles; -1 if the
+ * of a ray from its ComponentRayVertices vertex with the other components' triangles; -1 if the
  * component has a boundary or every ray tried grazed an edge or vertex. A component
  * the rest of the surface swept over (a surface moving past a small piece in one
  * step, leaving no intersection behind) changes its parity, and with it whether its

@@ -441,8 +441,8 @@ MakeComponentReference(const IndexedTriangleMesh & mesh, const MeshTopology & to
 
 /** The components whose ComponentNestingParity the move of every vertex of `mesh`
  * from startPositions to mesh.points can have changed, in increasing order. A
- * component's parity is that of one of its vertices v (the first of its first
- * triangle, as ComponentNestingParity takes it) against the other components. Along
+ * component's parity is that of its ComponentRayVertices vertex v against the other
+ * components. Along
  * the straight path from start to end it changes only where v passes through a
  * triangle T of another component, or T through v, so then v or T moved and the box
  * of v's path overlaps the box of T's start and end: a component for which no such
@@ -453,26 +453,18 @@ ComponentsAMoveMayHavePassed(const IndexedTriangleMesh & mesh,
                              const MeshTopology &        topology,
                              const std::vector<Vec3> &   startPositions)
 {
-  constexpr std::uint32_t     none = std::numeric_limits<std::uint32_t>::max();
-  const std::size_t           components = topology.numberOfComponents;
-  std::vector<std::uint32_t>  vertex(components, none);
-  std::vector<AxisAlignedBox> path(components);
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-  {
-    const std::uint32_t c = topology.triangleComponent[f];
-    if (vertex[c] == none)
-    {
-      vertex[c] = mesh.triangles[f][0];
-      path[c].Add(startPositions[vertex[c]]);
-      path[c].Add(mesh.points[vertex[c]]);
-    }
-  }
-  std::vector<std::uint32_t> order;
-  double                     widest = 0.0;
+  constexpr std::uint32_t          none = std::numeric_limits<std::uint32_t>::max();
+  const std::size_t                components = topology.numberOfComponents;
+  const std::vector<std::uint32_t> vertex = ComponentRayVertices(mesh, topology);
+  std::vector<AxisAlignedBox>      path(components);
+  std::vector<std::uint32_t>       order;
+  double                           widest = 0.0;
   for (std::uint32_t c = 0; c < components; ++c)
   {
     if (vertex[c] != none)
     {
+      path[c].Add(startPositions[vertex[c]]);
+      path[c].Add(mesh.points[vertex[c]]);
       order.push_back(c);
       widest = std::max(widest, path[c].upper[0] - path[c].lower[0]);
     }

@@ -203,6 +203,21 @@ ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQ
   return result;
 }
 
+std::vector<std::uint32_t>
+ComponentRayVertices(const IndexedTriangleMesh & mesh, const MeshTopology & topology)
+{
+  std::vector<std::uint32_t> vertex(topology.numberOfComponents, std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    const std::uint32_t c = topology.triangleComponent[f];
+    if (vertex[c] == std::numeric_limits<std::uint32_t>::max())
+    {
+      vertex[c] = mesh.triangles[f][0];
+    }
+  }
+  return vertex;
+}
+
 std::vector<std::int8_t>
 ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & topology)
 {
@@ -211,17 +226,12 @@ ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & to
   {
     return {};
   }
-  std::vector<std::int8_t>   parity(components, -1);
-  std::vector<std::uint32_t> vertex(components, std::numeric_limits<std::uint32_t>::max());
-  std::vector<std::uint32_t> proper;
+  std::vector<std::int8_t>         parity(components, -1);
+  const std::vector<std::uint32_t> vertex = ComponentRayVertices(mesh, topology);
+  std::vector<std::uint32_t>       proper;
   proper.reserve(mesh.triangles.size());
   for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
   {
-    const std::uint32_t c = topology.triangleComponent[f];
-    if (vertex[c] == std::numeric_limits<std::uint32_t>::max())
-    {
-      vertex[c] = mesh.triangles[f][0];
-    }
     if (MeshFaceIsProper(mesh, f))
     {
       proper.push_back(f);
