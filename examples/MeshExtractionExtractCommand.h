@@ -157,12 +157,9 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   }
   if (s.isotropic)
   {
-    const auto & spacing = image->GetSpacing();
-    const double smallest = std::min({ spacing[0], spacing[1], spacing[2] });
-    const double largest = std::max({ spacing[0], spacing[1], spacing[2] });
-    if (largest - smallest > 1e-6 * largest)
+    if (const double spacing = FilterType::IsotropicResamplingSpacing(image))
     {
-      std::cerr << "  resampling to cubic voxels of " << smallest << " mm (from " << spacing << ")\n";
+      std::cerr << "  resampling to cubic voxels of " << spacing << " mm (from " << image->GetSpacing() << ")\n";
     }
     else
     {

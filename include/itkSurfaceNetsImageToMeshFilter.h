@@ -217,6 +217,10 @@ public:
   itkSetMacro(ResampleToIsotropicVoxels, bool);
   itkGetConstMacro(ResampleToIsotropicVoxels, bool);
   itkBooleanMacro(ResampleToIsotropicVoxels);
+  /** The spacing ResampleToIsotropicVoxels gives `image`: its smallest spacing, or 0
+   * when its voxels are cubic already (within 1e-6) and it is not resampled. */
+  static double
+  IsotropicResamplingSpacing(const InputImageType * image);
   // The multithreaded stages use ProcessObject's NumberOfWorkUnits.
 
   /** After Update(): relaxation iterations run, the last largest relocation (voxels),

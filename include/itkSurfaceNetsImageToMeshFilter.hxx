@@ -396,19 +396,29 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetSampledL
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+double
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::IsotropicResamplingSpacing(
+  const InputImageType * image)
+{
+  const auto & spacing = image->GetSpacing();
+  const double smallest = std::min({ spacing[0], spacing[1], spacing[2] });
+  const double largest = std::max({ spacing[0], spacing[1], spacing[2] });
+  return largest - smallest > 1e-6 * largest ? smallest : 0.0;
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ResampleInputs()
 {
   m_SampledInput = nullptr;
   m_SampledLabelImage = nullptr;
   const InputImageType * input = this->GetInput();
-  const auto &           spacing = input->GetSpacing();
-  const double           smallest = std::min({ spacing[0], spacing[1], spacing[2] });
-  const double           largest = std::max({ spacing[0], spacing[1], spacing[2] });
-  if (!m_ResampleToIsotropicVoxels || largest - smallest <= 1e-6 * largest)
+  const double           smallest = m_ResampleToIsotropicVoxels ? IsotropicResamplingSpacing(input) : 0.0;
+  if (smallest == 0.0)
   {
     return;
   }
+  const auto & spacing = input->GetSpacing();
   const auto & region = input->GetBufferedRegion();
   if constexpr (std::is_floating_point<InputPixelType>::value)
   {
