@@ -73,7 +73,8 @@ Made by `python3 scripts/make-results-doc.py {dir} > doc/results.md` after
 `bash scripts/run-main-job.sh` (the main job also writes it as `{dir}/results.md`).
 Every table says where and when it was measured, and which command makes its input.
 Times are wall clock on the machine named; on a shared 2-core virtual machine they vary
-by up to 30 % between runs, so compare only times measured together.
+by up to 30 % between runs, so compare only times measured together. How the figures
+changed over time is in doc/history.md.
 
 Measures (thesis section 4.2.3): q_area = 4√3·A/Σe² and q_angle = smallest/largest angle
 are 1 for an equilateral triangle; "<0.3 %" is the share of triangles with q_angle below
