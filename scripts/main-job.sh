@@ -81,3 +81,13 @@ fi
   echo "</ul><p>Meshes: *.vtk next to this page; comparison tables: comparison-*.md.</p></body></html>"
 } > "$out/index.html"
 log "open $out/index.html"
+
+# 5. The tables of doc/results.md from this run, in $out/results.md (doc/results.md is
+#    replaced only by hand: python3 scripts/make-results-doc.py "$out" > doc/results.md).
+if python3 scripts/make-results-doc.py "$out" > "$out/results.md.tmp"; then
+  mv "$out/results.md.tmp" "$out/results.md"
+  log "tables for doc/results.md: $out/results.md"
+else
+  rm -f "$out/results.md.tmp"
+  log "make-results-doc.py failed: no $out/results.md"
+fi
