@@ -1,0 +1,266 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+// Reading and writing images and meshes for the meshextraction tool, with errors
+// that name the file and the problem.
+
+#include "MeshExtractionCLI.h"
+
+#include "itkGDCMImageIO.h"
+#include "itkGDCMSeriesFileNames.h"
+#include "itkImageFileReader.h"
+#include "itkImageFileWriter.h"
+#include "itkImageIOFactory.h"
+#include "itkImageSeriesReader.h"
+#include "itkMeshFileReader.h"
+#include "itkMeshFileWriter.h"
+#include "itksys/SystemTools.hxx"
+
+namespace MeshExtractionCLI
+{
+namespace
+{
+bool
+IsDirectory(const std::string & path)
+{
+  return itksys::SystemTools::FileIsDirectory(path);
+}
+
+void
+RequireReadable(const std::string & path)
+{
+  if (!itksys::SystemTools::FileExists(path))
+  {
+    itkGenericExceptionMacro("cannot read '" << path << "': no such file or directory");
+  }
+}
+
+/** The files of the first DICOM series in a directory, in slice order. */
+std::vector<std::string>
+DicomSeriesFiles(const std::string & directory)
+{
+  auto names = itk::GDCMSeriesFileNames::New();
+  names->SetUseSeriesDetails(true);
+  names->SetDirectory(directory);
+  const auto & series = names->GetSeriesUIDs();
+  if (series.empty())
+  {
+    itkGenericExceptionMacro("'" << directory << "' is a directory without a DICOM series");
+  }
+  return names->GetFileNames(series.front());
+}
+
+/** The grid of an image. */
+template <typename TImage>
+ME::PhantomGrid
+GridOf(const TImage * image)
+{
+  ME::PhantomGrid grid;
+  grid.size = image->GetLargestPossibleRegion().GetSize();
+  grid.spacing = image->GetSpacing();
+  grid.origin = image->GetOrigin();
+  grid.direction = image->GetDirection();
+  return grid;
+}
+} // namespace
+
+// ------------------------------------------------------------------------------
+// Images
+// ------------------------------------------------------------------------------
+template <typename TImage>
+typename TImage::Pointer
+ReadImageFile(const std::string & path)
+{
+  RequireReadable(path);
+  try
+  {
+    if (IsDirectory(path))
+    {
+      using ReaderType = itk::ImageSeriesReader<TImage>;
+      auto reader = ReaderType::New();
+      reader->SetImageIO(itk::GDCMImageIO::New());
+      reader->SetFileNames(DicomSeriesFiles(path));
+      reader->Update();
+      return reader->GetOutput();
+    }
+    auto reader = itk::ImageFileReader<TImage>::New();
+    reader->SetFileName(path);
+    reader->Update();
+    return reader->GetOutput();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("cannot read image '" << path << "': " << e.GetDescription());
+  }
+}
+
+itk::ImageIOBase::Pointer
+ReadImageInformation(const std::string & path)
+{
+  RequireReadable(path);
+  const std::string file = IsDirectory(path) ? DicomSeriesFiles(path).front() : path;
+  auto io = itk::ImageIOFactory::CreateImageIO(file.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
+  if (io.IsNull())
+  {
+    itkGenericExceptionMacro("cannot read image '" << path << "': not a format ITK recognises (or a corrupt file)");
+  }
+  io->SetFileName(file);
+  try
+  {
+    io->ReadImageInformation();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("cannot read image '" << path << "': " << e.GetDescription());
+  }
+  return io;
+}
+
+ME::PhantomGrid
+ReadImageGrid(const std::string & path)
+{
+  using ImageType = itk::Image<float, 3>;
+  auto reader = itk::ImageFileReader<ImageType>::New();
+  if (IsDirectory(path))
+  {
+    auto image = ReadImageFile<ImageType>(path);
+    return GridOf(image.GetPointer());
+  }
+  RequireReadable(path);
+  reader->SetFileName(path);
+  try
+  {
+    reader->UpdateOutputInformation();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("cannot read image '" << path << "': " << e.GetDescription());
+  }
+  return GridOf(reader->GetOutput());
+}
+
+template <typename TImage>
+void
+WriteImageFile(const TImage * image, const std::string & path)
+{
+  auto writer = itk::ImageFileWriter<TImage>::New();
+  writer->SetFileName(path);
+  writer->SetInput(image);
+  writer->SetUseCompression(true);
+  try
+  {
+    writer->Update();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("cannot write image '" << path << "': " << e.GetDescription());
+  }
+}
+
+// The pixel types the commands read and write.
+#define MESHEXTRACTION_CLI_IMAGE_IO(TPixel)                                                                            \
+  template itk::Image<TPixel, 3>::Pointer ReadImageFile<itk::Image<TPixel, 3>>(const std::string & path);              \
+  template void WriteImageFile<itk::Image<TPixel, 3>>(const itk::Image<TPixel, 3> * image, const std::string & path)
+MESHEXTRACTION_CLI_IMAGE_IO(unsigned char);
+MESHEXTRACTION_CLI_IMAGE_IO(signed char);
+MESHEXTRACTION_CLI_IMAGE_IO(unsigned short);
+MESHEXTRACTION_CLI_IMAGE_IO(short);
+MESHEXTRACTION_CLI_IMAGE_IO(float);
+MESHEXTRACTION_CLI_IMAGE_IO(double);
+#undef MESHEXTRACTION_CLI_IMAGE_IO
+
+// ------------------------------------------------------------------------------
+// Meshes
+// ------------------------------------------------------------------------------
+IOMeshType::Pointer
+ReadMeshFile(const std::string & path)
+{
+  RequireReadable(path);
+  auto reader = itk::MeshFileReader<IOMeshType>::New();
+  reader->SetFileName(path);
+  try
+  {
+    reader->Update();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("cannot read mesh '" << path << "': " << e.GetDescription());
+  }
+  IOMeshType::Pointer mesh = reader->GetOutput();
+  if (mesh->GetNumberOfPoints() == 0 || mesh->GetNumberOfCells() == 0)
+  {
+    itkGenericExceptionMacro("cannot read mesh '" << path << "': it has " << mesh->GetNumberOfPoints() << " points and "
+                                                  << mesh->GetNumberOfCells() << " cells");
+  }
+  return mesh;
+}
+
+QuadEdgeMeshType::Pointer
+ReadManifoldMesh(const std::string & path, const std::string & command)
+{
+  const IOMeshType::Pointer     mesh = ReadMeshFile(path);
+  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  auto                          out = QuadEdgeMeshType::New();
+  try
+  {
+    ME::FillMesh(triangles, *out);
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which '"
+                                 << command << "' needs: " << Describe(e));
+  }
+  return out;
+}
+
+namespace
+{
+/** Writes the triangles of any ITK mesh through a plain itk::Mesh. */
+template <typename TMesh>
+void
+WriteTriangles(const TMesh * mesh, const std::string & path)
+{
+  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  auto                          out = IOMeshType::New();
+  ME::FillMesh(triangles, *out);
+  auto writer = itk::MeshFileWriter<IOMeshType>::New();
+  writer->SetFileName(path);
+  writer->SetInput(out);
+  try
+  {
+    writer->Update();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("cannot write mesh '" << path << "': " << e.GetDescription());
+  }
+}
+} // namespace
+
+void
+WriteMeshFile(const IOMeshType * mesh, const std::string & path)
+{
+  WriteTriangles(mesh, path);
+}
+
+void
+WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path)
+{
+  WriteTriangles(mesh, path);
+}
+
+} // namespace MeshExtractionCLI

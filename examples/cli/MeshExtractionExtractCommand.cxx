@@ -1,0 +1,454 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+// meshextraction extract: a surface mesh from an image (or a phantom) with SurfaceNets.
+
+#include "MeshExtractionCLI.h"
+
+#include "itkImplicitSurfaceImageSource.h"
+#include "itkSurfaceNetsImageToMeshFilter.h"
+
+#include <iomanip>
+#include <iostream>
+
+namespace MeshExtractionCLI
+{
+namespace
+{
+using SurfaceNetsEnums = itk::SurfaceNetsImageToMeshFilterEnums;
+// The tool only writes the mesh: itk::Mesh is faster to fill than QuadEdgeMesh.
+using ExtractMeshType = IOMeshType;
+
+/** The parts of the extract options that do not depend on the pixel type. The
+ * filter's own settings start as the filter's defaults (ExtractDefaults), so that the
+ * options and their help text cannot drift from the filter. */
+struct ExtractSettings
+{
+  // The tool's own.
+  bool         byLabel{ false };
+  std::string  labelImage;
+  unsigned int threads{ 0 }; // 0: the filter's default number of work units
+  // The filter's (ExtractDefaults sets them).
+  double                          isoValue{};
+  bool                            insideAbove{};
+  double                          label{};
+  SurfaceNetsEnums::Relaxation    relaxation{};
+  unsigned int                    iterations{};
+  SurfaceNetsEnums::Triangulation triangulation{};
+  SurfaceNetsEnums::Gradient      gradient{};
+  double                          sigma{};
+  bool                            highQuality{};
+  unsigned int                    rounds{};
+  double                          convergedSwaps{};
+  double                          cellDilation{};
+  bool                            isotropic{};
+};
+
+/** The settings of a default-constructed SurfaceNetsImageToMeshFilter (the pixel type
+ * does not change them). */
+ExtractSettings
+ExtractDefaults()
+{
+  const auto      filter = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>, ExtractMeshType>::New();
+  ExtractSettings s;
+  s.isoValue = filter->GetIsoValue();
+  s.insideAbove = filter->GetInsideIsAboveIsoValue();
+  s.label = filter->GetLabelValue();
+  s.relaxation = filter->GetRelaxation();
+  s.iterations = filter->GetMaximumNumberOfIterations();
+  s.triangulation = filter->GetTriangulation();
+  s.gradient = filter->GetGradientMethod();
+  s.sigma = filter->GetGradientSigma();
+  s.highQuality = filter->GetHighQuality();
+  s.rounds = filter->GetNumberOfImprovementRounds();
+  s.convergedSwaps = filter->GetConvergedSwapFraction();
+  s.cellDilation = filter->GetImprovementCellDilation();
+  s.isotropic = filter->GetResampleToIsotropicVoxels();
+  return s;
+}
+
+/** The names --triangulation takes, with the filter's setting each names. */
+const OptionNames<SurfaceNetsEnums::Triangulation> &
+TriangulationNames()
+{
+  static const OptionNames<SurfaceNetsEnums::Triangulation> table = {
+    { "shortest", SurfaceNetsEnums::Triangulation::ShortestDiagonal },
+    { "delaunay", SurfaceNetsEnums::Triangulation::Delaunay },
+    { "quads", SurfaceNetsEnums::Triangulation::Quadrilaterals },
+  };
+  return table;
+}
+
+SurfaceNetsEnums::Relaxation
+RelaxationFromName(const std::string & name)
+{
+  if (name == "auto")
+  {
+    return SurfaceNetsEnums::Relaxation::Automatic;
+  }
+  if (name == "none")
+  {
+    return SurfaceNetsEnums::Relaxation::None;
+  }
+  if (name == "sna" || name == "averaging")
+  {
+    return SurfaceNetsEnums::Relaxation::Averaging;
+  }
+  if (name == "gradient")
+  {
+    return SurfaceNetsEnums::Relaxation::Gradient;
+  }
+  if (name == "snert" || name == "combined")
+  {
+    return SurfaceNetsEnums::Relaxation::Combined;
+  }
+  throw UsageError("--relaxation must be auto, none, sna, gradient or snert, got '" + name + "'");
+}
+
+// ------------------------------------------------------------------------------
+// Running SurfaceNets
+// ------------------------------------------------------------------------------
+template <typename TFilter>
+void
+ConfigureFilter(TFilter * filter, const ExtractSettings & s)
+{
+  filter->SetIsoValue(s.isoValue);
+  filter->SetInsideIsAboveIsoValue(s.insideAbove);
+  filter->SetClassifyByLabel(s.byLabel && s.labelImage.empty());
+  filter->SetLabelValue(s.label);
+  filter->SetRelaxation(s.relaxation);
+  filter->SetMaximumNumberOfIterations(s.iterations);
+  filter->SetTriangulation(s.triangulation);
+  filter->SetGradientMethod(s.gradient);
+  filter->SetGradientSigma(s.sigma);
+  filter->SetHighQuality(s.highQuality);
+  filter->SetNumberOfImprovementRounds(s.rounds);
+  filter->SetConvergedSwapFraction(s.convergedSwaps);
+  filter->SetImprovementCellDilation(s.cellDilation);
+  filter->SetResampleToIsotropicVoxels(s.isotropic);
+  if (s.threads > 0)
+  {
+    filter->SetNumberOfWorkUnits(s.threads);
+  }
+}
+
+/** With --isotropic: whether, and to what spacing, the image is resampled. */
+template <typename TFilter, typename TImage>
+void
+PrintResampling(const TImage * image)
+{
+  if (const double spacing = TFilter::IsotropicResamplingSpacing(image))
+  {
+    std::cerr << "  resampling to cubic voxels of " << spacing << " mm (from " << image->GetSpacing() << ")\n";
+  }
+  else
+  {
+    std::cerr << "  the voxels are cubic already: not resampled\n";
+  }
+}
+
+/** The line that sums up what the filter did. */
+template <typename TFilter>
+void
+PrintFilterSummary(const TFilter * filter, const ExtractSettings & s, const Stopwatch & watch)
+{
+  std::cerr << "  " << filter->GetNumberOfNodes() << " nodes (" << filter->GetNumberOfSplitCells() << " split cells), "
+            << filter->GetNumberOfIterations() << " relaxation iterations (last largest move "
+            << filter->GetLastMaximumRelocation() << " voxel), " << filter->GetNumberOfNodesMovedBack()
+            << " nodes moved back";
+  if (s.highQuality)
+  {
+    std::cerr << ", " << filter->GetNumberOfSwaps() << " swaps in " << filter->GetNumberOfRoundsPerformed()
+              << " rounds";
+  }
+  std::cerr << ", " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n" << std::defaultfloat;
+}
+
+template <typename TImage>
+ExtractMeshType::Pointer
+RunSurfaceNets(const TImage * image, const ExtractSettings & s)
+{
+  using FilterType = itk::SurfaceNetsImageToMeshFilter<TImage, ExtractMeshType>;
+  auto filter = FilterType::New();
+  filter->SetInput(image);
+  ConfigureFilter(filter.GetPointer(), s);
+  typename FilterType::LabelImageType::Pointer labels;
+  if (!s.labelImage.empty())
+  {
+    labels = ReadImageFile<typename FilterType::LabelImageType>(s.labelImage);
+    filter->SetLabelImage(labels);
+  }
+  if (s.isotropic)
+  {
+    PrintResampling<FilterType>(image);
+  }
+  ReportProgress(filter.GetPointer(), "SurfaceNets");
+  Stopwatch watch;
+  filter->Update();
+  PrintFilterSummary(filter.GetPointer(), s, watch);
+  ExtractMeshType::Pointer mesh = filter->GetOutput();
+  mesh->DisconnectPipeline();
+  return mesh;
+}
+
+/** Reads INPUT with its own pixel type and extracts. */
+ExtractMeshType::Pointer
+ExtractFromFile(const std::string & path, const ExtractSettings & s)
+{
+  auto io = ReadImageInformation(path);
+  if (io->GetNumberOfDimensions() != 3)
+  {
+    itkGenericExceptionMacro("'" << path << "' is a " << io->GetNumberOfDimensions()
+                                 << "-D image; SurfaceNets needs a 3-D image");
+  }
+  if (io->GetNumberOfComponents() != 1)
+  {
+    itkGenericExceptionMacro("'" << path << "' has " << io->GetNumberOfComponents()
+                                 << " components per voxel; SurfaceNets needs a scalar image");
+  }
+  using IOComponent = itk::IOComponentEnum;
+  switch (io->GetComponentType())
+  {
+    case IOComponent::UCHAR:
+      return RunSurfaceNets(ReadImageFile<itk::Image<unsigned char, 3>>(path).GetPointer(), s);
+    case IOComponent::CHAR:
+      return RunSurfaceNets(ReadImageFile<itk::Image<signed char, 3>>(path).GetPointer(), s);
+    case IOComponent::USHORT:
+      return RunSurfaceNets(ReadImageFile<itk::Image<unsigned short, 3>>(path).GetPointer(), s);
+    case IOComponent::SHORT:
+      return RunSurfaceNets(ReadImageFile<itk::Image<short, 3>>(path).GetPointer(), s);
+    case IOComponent::UINT:
+    case IOComponent::INT:
+    case IOComponent::ULONG:
+    case IOComponent::LONG:
+    case IOComponent::ULONGLONG:
+    case IOComponent::LONGLONG:
+    case IOComponent::DOUBLE:
+      return RunSurfaceNets(ReadImageFile<itk::Image<double, 3>>(path).GetPointer(), s);
+    default:
+      return RunSurfaceNets(ReadImageFile<itk::Image<float, 3>>(path).GetPointer(), s);
+  }
+}
+
+/** Extracts from --phantom (the iso-value its image needs, unless --iso is given); the
+ * phantom's exact surface goes to `exact`. */
+ExtractMeshType::Pointer
+ExtractFromPhantom(const Arguments & args, ExtractSettings & s, itk::ImplicitSurfaceFunction::Pointer & exact)
+{
+  const ME::PhantomShape shape = ShapeFromName(args.Get("phantom"));
+  const ME::PhantomGrid  grid = GridFromArguments(shape, args);
+  const auto             parameters = ME::DefaultPhantomImageParameters(shape);
+  if (!args.Has("iso"))
+  {
+    // Distance maps: the zero level, inside negative; blurred steps: half-way.
+    const bool step = parameters.mode == itk::MeshExtractionEnums::PhantomImage::BlurredStep;
+    s.isoValue = step ? 0.5 * (parameters.insideValue + parameters.outsideValue) : 0.0;
+    s.insideAbove = step;
+  }
+  std::cerr << "extract: phantom " << ME::PhantomShapeName(shape) << " (" << grid.size << " voxels)\n";
+  auto source = ME::MakePhantomImageSource<itk::Image<float, 3>>(shape, grid, parameters);
+  source->Update();
+  ExtractMeshType::Pointer mesh = RunSurfaceNets(source->GetOutput(), s);
+  exact = ME::MakePhantomSurface(shape, grid);
+  return mesh;
+}
+
+// ------------------------------------------------------------------------------
+// Options
+// ------------------------------------------------------------------------------
+/** A count option that must not be negative. */
+unsigned int
+NonNegative(const Arguments & args, const std::string & name, unsigned int fallback)
+{
+  const long value = args.GetInteger(name, static_cast<long>(fallback));
+  if (value < 0)
+  {
+    throw UsageError("--" + name + " must be >= 0");
+  }
+  return static_cast<unsigned int>(value);
+}
+
+/** What the object is: --iso and --inside, --label, --labels. */
+void
+ReadObjectOptions(const Arguments & args, bool fromPhantom, ExtractSettings & s)
+{
+  s.byLabel = args.Has("label");
+  s.label = args.GetDouble("label", s.label);
+  s.labelImage = args.Get("labels");
+  if (!fromPhantom && !args.Has("iso") && !s.byLabel)
+  {
+    throw UsageError("give the iso-value (--iso V) or the object's label (--label L)");
+  }
+  if (args.Has("labels") && !args.Has("iso"))
+  {
+    throw UsageError("--labels relaxes a segmentation toward the iso-surface of INPUT: give --iso too");
+  }
+  s.isoValue = args.GetDouble("iso", s.isoValue);
+  const std::string inside = args.Get("inside", s.insideAbove ? "above" : "below");
+  if (inside != "above" && inside != "below")
+  {
+    throw UsageError("--inside must be above or below, got '" + inside + "'");
+  }
+  s.insideAbove = inside == "above";
+}
+
+/** How the net is relaxed and triangulated, the high-quality mode, the threads. */
+void
+ReadMeshingOptions(const Arguments & args, ExtractSettings & s)
+{
+  if (args.Has("relaxation"))
+  {
+    s.relaxation = RelaxationFromName(args.Get("relaxation"));
+  }
+  s.iterations = NonNegative(args, "iterations", s.iterations);
+  s.triangulation = ChooseOption(args, "triangulation", TriangulationNames(), s.triangulation);
+  if (args.Has("sigma"))
+  {
+    s.gradient = SurfaceNetsEnums::Gradient::GaussianDerivative;
+    s.sigma = args.GetDouble("sigma", s.sigma);
+  }
+  const std::string qualityMode = args.Get("quality", s.highQuality ? "high" : "standard");
+  if (qualityMode != "standard" && qualityMode != "high")
+  {
+    throw UsageError("--quality must be standard or high, got '" + qualityMode + "'");
+  }
+  s.highQuality = qualityMode == "high";
+  s.rounds = NonNegative(args, "rounds", s.rounds);
+  s.convergedSwaps = args.GetDouble("converged-swaps", s.convergedSwaps); // the filter checks the range
+  s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
+  s.isotropic = s.isotropic || args.Has("isotropic");
+  s.threads = NonNegative(args, "threads", 0);
+}
+
+/** --report and --report-json: the quality (and distances to a phantom's exact surface). */
+void
+ReportOnMesh(const Arguments &                    args,
+             const ExtractMeshType *              mesh,
+             const itk::ImplicitSurfaceFunction * exact,
+             const std::string &                  output)
+{
+  MeasureSettings settings;
+  settings.referenceSurface = exact;
+  const MeasuredMesh measured = MeasureMesh(mesh, output, settings);
+  if (args.Has("report"))
+  {
+    PrintMeasuredMesh(measured, output, std::cout);
+  }
+  if (args.Has("report-json"))
+  {
+    WriteJSON({ measured }, args.Get("report-json"));
+  }
+}
+
+int
+RunExtract(const Arguments & args)
+{
+  ExtractSettings s = ExtractDefaults();
+  const bool      fromPhantom = args.Has("phantom");
+  if (fromPhantom == (args.positional.size() == 2))
+  {
+    throw UsageError(fromPhantom ? "with --phantom give only OUTPUT" : "'extract' expects INPUT and OUTPUT");
+  }
+  const std::string output = args.positional.back();
+  ReadObjectOptions(args, fromPhantom, s);
+  ReadMeshingOptions(args, s);
+
+  ExtractMeshType::Pointer              mesh;
+  itk::ImplicitSurfaceFunction::Pointer exact;
+  if (fromPhantom)
+  {
+    mesh = ExtractFromPhantom(args, s, exact);
+  }
+  else
+  {
+    std::cerr << "extract: " << args.positional[0] << '\n';
+    mesh = ExtractFromFile(args.positional[0], s);
+  }
+  WriteMeshFile(mesh.GetPointer(), output);
+  std::cerr << "  wrote " << output << " (" << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfCells()
+            << " faces)\n";
+  if (args.Has("report") || args.Has("report-json"))
+  {
+    ReportOnMesh(args, mesh, exact, output);
+  }
+  return 0;
+}
+} // namespace
+
+Command
+MakeExtractCommand()
+{
+  const ExtractSettings defaults = ExtractDefaults();
+  Command               c;
+  c.name = "extract";
+  c.summary = "extract a surface mesh with SurfaceNets (SNA, SNERT)";
+  c.usage = "INPUT OUTPUT [options]   |   meshextraction extract --phantom NAME OUTPUT [options]";
+  c.description = "Extracts a closed, 2-manifold, outward-oriented triangle mesh from a 3-D image (any format ITK\n"
+                  "reads, or a DICOM series directory) with SurfaceNets (thesis chapter 3) and writes it in the\n"
+                  "format OUTPUT's extension names (.vtk, .obj, .off, .gii, .byu). The object is the voxels\n"
+                  "above (or below) --iso; or the voxels equal to --label in a label image; or a segmentation\n"
+                  "(--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface. SNERT (the\n"
+                  "default for greyscale input) puts the nodes on the trilinear iso-surface and spaces them out;\n"
+                  "SNA only averages. Coordinates are physical (spacing, origin, direction).";
+  c.options = {
+    { "iso", "V", "iso-value of the object's boundary", "0 for a phantom" },
+    { "inside", "above|below", "which side of --iso is the object", defaults.insideAbove ? "above" : "below" },
+    { "label",
+      "L",
+      "the object is the voxels equal to L (INPUT or --labels is a label image)",
+      DefaultText(defaults.label) },
+    { "labels", "FILE", "segmentation whose --label voxels give the net, relaxed toward INPUT's iso-surface", "" },
+    { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
+    { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
+    { "iterations", "N", "maximum relaxation iterations", DefaultText(defaults.iterations) },
+    { "triangulation",
+      "MODE",
+      OptionChoices(TriangulationNames()),
+      OptionName(TriangulationNames(), defaults.triangulation) },
+    { "sigma", "MM", "Gaussian-derivative gradients of this scale instead of central differences", "" },
+    { "quality",
+      "standard|high",
+      "high: alternate regularity edge swaps with SNERT on the triangles",
+      defaults.highQuality ? "high" : "standard" },
+    { "rounds", "N", "rounds of swaps and relaxation for --quality high", DefaultText(defaults.rounds) },
+    { "converged-swaps",
+      "F",
+      "--quality high stops its rounds when one swaps fewer than this fraction of the triangles (0: none)",
+      DefaultText(defaults.convergedSwaps) },
+    { "cell-dilation",
+      "V",
+      "--quality high lets a node leave its cell by up to V voxels (0 to 0.5; 0: stay in the cell)",
+      DefaultText(defaults.cellDilation) },
+    { "isotropic",
+      "",
+      "resample to cubic voxels of the smallest spacing first: better shaped, more triangles on anisotropic voxels",
+      "" },
+    { "threads", "N", "work units (0: all cores)", "0" },
+    { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
+    { "report-json", "FILE", "write the report as JSON", "" },
+  };
+  for (const auto & o : GridOptions())
+  {
+    c.options.push_back(o);
+  }
+  c.minimumPositional = 1;
+  c.maximumPositional = 2;
+  c.run = RunExtract;
+  return c;
+}
+
+} // namespace MeshExtractionCLI
