@@ -20,6 +20,7 @@ if(VTK_FOUND AND NOT TARGET MeshExtractionVTKPeers)
     ${_MeshExtractionVTKPeers_dir}/MeshExtractionVTKPeersRunner.cxx
   )
   target_include_directories(MeshExtractionVTKPeers PUBLIC ${_MeshExtractionVTKPeers_dir})
+  target_compile_features(MeshExtractionVTKPeers PUBLIC cxx_std_17)
   target_link_libraries(MeshExtractionVTKPeers PUBLIC ${ITK_LIBRARIES} ${VTK_LIBRARIES})
   if(TARGET MeshExtraction)
     target_link_libraries(MeshExtractionVTKPeers PUBLIC MeshExtraction)
