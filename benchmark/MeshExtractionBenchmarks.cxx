@@ -47,7 +47,9 @@
 #include "itkTriangleMeshQualityCalculator.h"
 
 #ifdef MESHEXTRACTION_BENCHMARK_WITH_VTK
-#  include "meshextraction-compare-methods.h"
+#  include "MeshExtractionVTKPeers.h"
+
+#  include <vtkSMPTools.h>
 #endif
 
 #include <benchmark/benchmark.h>

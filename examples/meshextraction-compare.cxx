@@ -20,18 +20,18 @@
 //   meshextraction-compare [--phantom NAME] [--size N] [--spacing S] [options]
 //   meshextraction-compare IMAGE --iso V [--inside above|below] [options]
 //
-// The methods (meshextraction-compare-methods.h) are VTK's marching cubes and flying
-// edges (plain and with 3D Slicer's windowed-sinc smoothing), ITK's
+// The methods (the MeshExtractionVTKPeers library, peers/) are VTK's marching cubes and
+// flying edges (plain and with 3D Slicer's windowed-sinc smoothing), ITK's
 // BinaryMask3DMeshSource and this module's SurfaceNets (SNA, SNERT). Every mesh is
 // brought into ITK physical space and measured by the module's own calculators
 // (TriangleMeshQualityCalculator, MeshSurfaceDistanceCalculator).
 
-#include "MeshExtractionCommandHelpers.h"
-#include "meshextraction-compare-runner.h"
+#include "MeshExtractionCLI.h"
+#include "MeshExtractionVTKPeersRunner.h"
 
-#include "itkMeshSurfaceDistanceCalculator.h"
-#include "itkTriangleMeshQualityCalculator.h"
+#include "itksys/SystemTools.hxx"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -76,11 +76,9 @@ struct Input
 /** One row: a method's runs and their measurements. */
 struct Row
 {
-  Method                        method;
-  RunRecord                     run;
-  ME::TriangleMeshQualityReport quality;
-  bool                          hasDistance{ false };
-  ME::MeshSurfaceDistanceReport distance;
+  Method            method;
+  RunRecord         run;
+  CLI::MeasuredMesh measured;
 };
 
 CLI::Command
@@ -157,6 +155,9 @@ ListMethods(std::ostream & os)
   }
 }
 
+// ------------------------------------------------------------------------------
+// Options
+// ------------------------------------------------------------------------------
 std::vector<Method>
 SelectMethods(const CLI::Arguments & args)
 {
@@ -197,6 +198,39 @@ SelectMethods(const CLI::Arguments & args)
   return selected;
 }
 
+/** How the methods run. */
+struct RunSettings
+{
+  unsigned int        repeat{ 1 };
+  unsigned int        threads{ 0 };
+  std::vector<Method> methods;
+  bool                forked{ false };
+};
+
+RunSettings
+ReadRunSettings(const CLI::Arguments & args)
+{
+  const long repeat = args.GetInteger("repeat", kDefaultRepeat);
+  if (repeat < 1)
+  {
+    throw CLI::UsageError("--repeat must be >= 1");
+  }
+  const long threads = args.GetInteger("threads", 0);
+  if (threads < 0)
+  {
+    throw CLI::UsageError("--threads must be >= 0");
+  }
+  RunSettings s;
+  s.repeat = static_cast<unsigned int>(repeat);
+  s.threads = static_cast<unsigned int>(threads);
+  s.methods = SelectMethods(args);
+  s.forked = !args.Has("no-fork") && CanMeasurePeakMemory();
+  return s;
+}
+
+// ------------------------------------------------------------------------------
+// The input
+// ------------------------------------------------------------------------------
 std::string
 GridText(const ImageType & image)
 {
@@ -226,60 +260,75 @@ GridText(const ImageType & image)
   return os.str();
 }
 
+/** IMAGE with --iso (the inside above unless --inside says otherwise). */
+void
+LoadImageInput(const CLI::Arguments & args, Input & input)
+{
+  if (args.Has("phantom"))
+  {
+    throw CLI::UsageError("give either an IMAGE or --phantom, not both");
+  }
+  for (const char * option : { "size", "spacing", "origin", "direction" })
+  {
+    if (args.Has(option))
+    {
+      throw CLI::UsageError(std::string("--") + option + " applies to phantoms only");
+    }
+  }
+  if (!args.Has("iso"))
+  {
+    throw CLI::UsageError("an IMAGE needs --iso V");
+  }
+  const std::string path = args.positional.front();
+  input.image = CLI::ReadImageFile<ImageType>(path);
+  input.extraction.isoValue = args.GetDouble("iso", 0.0);
+  input.extraction.insideIsAboveIsoValue = true;
+  input.description = path;
+}
+
+/** --phantom on this tool's default grid (or the grid options), at the iso-value its
+ * image needs unless --iso is given, and its exact surface. */
+void
+LoadPhantomInput(const CLI::Arguments & args, Input & input)
+{
+  const ME::PhantomShape shape = CLI::ShapeFromName(args.Get("phantom", kDefaultPhantom));
+  CLI::Arguments         gridArguments = args;
+  if (!args.Has("size"))
+  {
+    gridArguments.Set("size", kDefaultGridSize);
+  }
+  const ME::PhantomGrid            grid = CLI::GridFromArguments(shape, gridArguments);
+  const ME::PhantomImageParameters parameters = ME::DefaultPhantomImageParameters(shape);
+  auto                             source = ME::MakePhantomImageSource<ImageType>(shape, grid, parameters);
+  source->Update();
+  input.image = source->GetOutput();
+  input.image->DisconnectPipeline();
+  input.exactSurface = ME::MakePhantomSurface(shape, grid);
+  if (parameters.mode == itk::MeshExtractionEnums::PhantomImage::DistanceMap)
+  {
+    input.extraction.isoValue = 0.0;
+    input.extraction.insideIsAboveIsoValue = parameters.distanceScale < 0.0;
+  }
+  else
+  {
+    input.extraction.isoValue = 0.5 * (parameters.insideValue + parameters.outsideValue);
+    input.extraction.insideIsAboveIsoValue = parameters.insideValue > parameters.outsideValue;
+  }
+  input.extraction.isoValue = args.GetDouble("iso", input.extraction.isoValue);
+  input.description = "phantom " + ME::PhantomShapeName(shape);
+}
+
 Input
 LoadInput(const CLI::Arguments & args)
 {
   Input input;
   if (!args.positional.empty())
   {
-    if (args.Has("phantom"))
-    {
-      throw CLI::UsageError("give either an IMAGE or --phantom, not both");
-    }
-    for (const char * option : { "size", "spacing", "origin", "direction" })
-    {
-      if (args.Has(option))
-      {
-        throw CLI::UsageError(std::string("--") + option + " applies to phantoms only");
-      }
-    }
-    if (!args.Has("iso"))
-    {
-      throw CLI::UsageError("an IMAGE needs --iso V");
-    }
-    const std::string path = args.positional.front();
-    input.image = CLI::ReadImageFile<ImageType>(path);
-    input.extraction.isoValue = args.GetDouble("iso", 0.0);
-    input.extraction.insideIsAboveIsoValue = true;
-    input.description = path;
+    LoadImageInput(args, input);
   }
   else
   {
-    const ME::PhantomShape shape = CLI::ShapeFromName(args.Get("phantom", kDefaultPhantom));
-    CLI::Arguments         gridArguments = args;
-    if (!args.Has("size"))
-    {
-      gridArguments.Set("size", kDefaultGridSize);
-    }
-    const ME::PhantomGrid            grid = CLI::GridFromArguments(shape, gridArguments);
-    const ME::PhantomImageParameters parameters = ME::DefaultPhantomImageParameters(shape);
-    auto                             source = ME::MakePhantomImageSource<ImageType>(shape, grid, parameters);
-    source->Update();
-    input.image = source->GetOutput();
-    input.image->DisconnectPipeline();
-    input.exactSurface = ME::MakePhantomSurface(shape, grid);
-    if (parameters.mode == itk::MeshExtractionEnums::PhantomImage::DistanceMap)
-    {
-      input.extraction.isoValue = 0.0;
-      input.extraction.insideIsAboveIsoValue = parameters.distanceScale < 0.0;
-    }
-    else
-    {
-      input.extraction.isoValue = 0.5 * (parameters.insideValue + parameters.outsideValue);
-      input.extraction.insideIsAboveIsoValue = parameters.insideValue > parameters.outsideValue;
-    }
-    input.extraction.isoValue = args.GetDouble("iso", input.extraction.isoValue);
-    input.description = "phantom " + ME::PhantomShapeName(shape);
+    LoadPhantomInput(args, input);
   }
   if (args.Has("inside"))
   {
@@ -296,6 +345,107 @@ LoadInput(const CLI::Arguments & args)
   return input;
 }
 
+// ------------------------------------------------------------------------------
+// The reference for the distances
+// ------------------------------------------------------------------------------
+struct Reference
+{
+  std::string       kind; ///< exact, marching-cubes, mesh or none
+  MeshType::Pointer mesh; ///< for mesh and marching-cubes
+  std::string       text{ "none" };
+};
+
+Reference
+ChooseReference(const CLI::Arguments & args, const Input & input)
+{
+  Reference reference;
+  reference.kind = args.Get("reference", input.exactSurface ? "exact" : "none");
+  if (args.Has("reference-mesh"))
+  {
+    if (args.Has("reference"))
+    {
+      throw CLI::UsageError("give either --reference or --reference-mesh, not both");
+    }
+    reference.kind = "mesh";
+  }
+  const std::string & kind = reference.kind;
+  if (kind != "exact" && kind != "marching-cubes" && kind != "none" && kind != "mesh")
+  {
+    throw CLI::UsageError("--reference must be exact, marching-cubes or none, got '" + kind + "'");
+  }
+  if (kind == "exact" && !input.exactSurface)
+  {
+    throw CLI::UsageError("--reference exact needs a phantom; for an image use --reference-mesh FILE or "
+                          "--reference marching-cubes");
+  }
+  if (kind == "mesh")
+  {
+    reference.mesh = CLI::ReadMeshFile(args.Get("reference-mesh"));
+    reference.text = "the mesh " + args.Get("reference-mesh");
+  }
+  else if (kind == "exact")
+  {
+    reference.text = "the phantom's exact surface";
+  }
+  return reference;
+}
+
+/** --reference marching-cubes: the mesh of the "mc" row, or of a run of its own. */
+void
+UseMarchingCubesReference(const std::vector<Row> & rows,
+                          const Input &            input,
+                          const RunSettings &      settings,
+                          Reference &              reference)
+{
+  const Row * mc = nullptr;
+  for (const Row & row : rows)
+  {
+    mc = (row.method.key == "mc" && row.run.ok) ? &row : mc;
+  }
+  RunRecord computed;
+  if (mc == nullptr)
+  {
+    computed = RunInProcess(FindMethod("mc"), input.extraction, 1, settings.threads, false);
+    if (!computed.ok)
+    {
+      itkGenericExceptionMacro("the marching-cubes reference failed: " << computed.error);
+    }
+  }
+  reference.mesh = MeshType::New();
+  ME::FillMesh(mc != nullptr ? mc->run.mesh : computed.mesh, *reference.mesh);
+  reference.text =
+    "the plain vtkMarchingCubes iso-surface (" + std::to_string(reference.mesh->GetNumberOfCells()) + " triangles)";
+}
+
+// ------------------------------------------------------------------------------
+// Running and measuring
+// ------------------------------------------------------------------------------
+std::vector<Row>
+RunMethods(const Input & input, const RunSettings & settings)
+{
+  std::vector<Row> rows;
+  for (const Method & method : settings.methods)
+  {
+    std::cerr << "running " << method.name << " (" << settings.repeat << "x"
+              << (settings.forked ? ", in a child process" : "") << ")\n";
+    Row row;
+    row.method = method;
+    row.run = settings.forked ? RunInChildProcess(method, input.extraction, settings.repeat, settings.threads)
+                              : RunInProcess(method, input.extraction, settings.repeat, settings.threads, false);
+    if (row.run.ok)
+    {
+      std::cerr << "  " << row.run.mesh.triangles.size() << " triangles, best " << std::fixed << std::setprecision(3)
+                << row.run.BestSeconds() << " s" << std::defaultfloat << '\n';
+    }
+    else
+    {
+      std::cerr << "  failed: " << row.run.error << '\n';
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
 /** Measure every successful row with the module's calculators. */
 void
 MeasureRows(std::vector<Row> &                   rows,
@@ -303,6 +453,10 @@ MeasureRows(std::vector<Row> &                   rows,
             const itk::ImplicitSurfaceFunction * referenceSurface,
             bool                                 selfIntersections)
 {
+  CLI::MeasureSettings settings;
+  settings.referenceMesh = referenceMesh;
+  settings.referenceSurface = referenceSurface;
+  settings.selfIntersections = selfIntersections;
   for (Row & row : rows)
   {
     if (!row.run.ok)
@@ -312,30 +466,26 @@ MeasureRows(std::vector<Row> &                   rows,
     CLI::Stopwatch watch;
     auto           mesh = MeshType::New();
     ME::FillMesh(row.run.mesh, *mesh);
-    auto quality = itk::TriangleMeshQualityCalculator<MeshType>::New();
-    quality->SetMesh(mesh);
-    quality->SetComputeSelfIntersections(selfIntersections);
-    quality->Compute();
-    row.quality = quality->GetReport();
-    if (referenceMesh != nullptr || referenceSurface != nullptr)
-    {
-      auto distance = itk::MeshSurfaceDistanceCalculator<MeshType>::New();
-      distance->SetMesh(mesh);
-      if (referenceMesh != nullptr)
-      {
-        distance->SetReferenceMesh(referenceMesh);
-      }
-      else
-      {
-        distance->SetReferenceSurface(referenceSurface);
-      }
-      distance->Compute();
-      row.hasDistance = true;
-      row.distance = distance->GetReport();
-    }
+    row.measured = CLI::MeasureMesh(mesh, row.method.name, settings);
     std::cerr << "  measured " << row.method.name << " in " << std::fixed << std::setprecision(2) << watch.Seconds()
               << " s\n"
               << std::defaultfloat;
+  }
+}
+
+/** --write-meshes: every method's mesh as DIR/<key>.vtk. */
+void
+WriteMeshes(const std::vector<Row> & rows, const std::string & directory)
+{
+  itksys::SystemTools::MakeDirectory(directory);
+  for (const Row & row : rows)
+  {
+    if (row.run.ok)
+    {
+      auto mesh = MeshType::New();
+      ME::FillMesh(row.run.mesh, *mesh);
+      CLI::WriteMeshFile(mesh.GetPointer(), directory + "/" + row.method.key + ".vtk");
+    }
   }
 }
 
@@ -384,18 +534,19 @@ Cells(const Row & row)
     cells.push_back("failed: " + row.run.error);
     return cells;
   }
-  const auto & q = row.quality;
+  const auto & q = row.measured.quality;
   cells.push_back(std::to_string(q.numberOfTriangles));
   cells.push_back(Fixed(q.qAngle.mean, 4));
   cells.push_back(Fixed(q.qArea.mean, 4));
   cells.push_back(Fixed(100.0 * q.fractionQAngleBelow03, 2));
   cells.push_back(Fixed(q.meanSmoothness, 4));
-  if (row.hasDistance)
+  if (row.measured.hasDistance)
   {
-    cells.push_back(Fixed(row.distance.vertices.mean, 4));
-    cells.push_back(Fixed(row.distance.vertices.maximum, 3));
-    cells.push_back(Fixed(row.distance.faceCentroids.mean, 4));
-    cells.push_back(Fixed(row.distance.faceCentroids.maximum, 3));
+    const auto & d = row.measured.distance;
+    cells.push_back(Fixed(d.vertices.mean, 4));
+    cells.push_back(Fixed(d.vertices.maximum, 3));
+    cells.push_back(Fixed(d.faceCentroids.mean, 4));
+    cells.push_back(Fixed(d.faceCentroids.maximum, 3));
   }
   else
   {
@@ -411,47 +562,33 @@ Cells(const Row & row)
   return cells;
 }
 
-std::vector<std::string>
-Notes(const Input &            input,
-      const std::vector<Row> & rows,
-      const std::string &      reference,
-      unsigned int             repeat,
-      bool                     forked)
+/** The note on peak memory: how it is measured, or that it is not. */
+std::string
+MemoryNote(const std::vector<Row> & rows, bool forked)
 {
-  std::vector<std::string> notes;
-  notes.push_back("input: " + input.description + ".");
-  notes.push_back("quality: q_angle = smallest/largest angle, q_area = 4 sqrt(3) A / (sum of squared edges), means "
-                  "over triangles; '<0.3 %' = share of triangles with q_angle < 0.3; smooth = mean |2 pi - sum of "
-                  "angles| (radians) over interior vertices. Measured by TriangleMeshQualityCalculator on "
-                  "itk::Mesh<double,3>, the same for every method.");
-  notes.push_back("distances (mm) of the vertices and of the face centroids to the reference: " + reference +
-                  " (MeshSurfaceDistanceCalculator).");
-  notes.push_back("integrity: valid = closed, 2-manifold, consistently and outward oriented, no degenerate, inverted "
-                  "or self-intersecting triangles; nm-edges = non-manifold edges; bnd-edges = boundary edges; "
-                  "self-x = self-intersecting triangle pairs ('-' = not checked).");
-  notes.push_back("time: wall-clock seconds, best of " + std::to_string(repeat) +
-                  " runs, from the image in memory to the mesh in ITK physical space (VTK: the points mapped "
-                  "through the ITK direction and origin), conversions for measurement excluded.");
-  if (forked)
+  if (!forked)
   {
-    std::string baseline;
-    for (const Row & row : rows)
+    return "peak MiB: not measured (--no-fork, or not Linux).";
+  }
+  std::string baseline;
+  for (const Row & row : rows)
+  {
+    if (row.run.baselineKB >= 0)
     {
-      if (row.run.baselineKB >= 0)
-      {
-        baseline = Fixed(row.run.baselineKB / 1024.0, 1);
-        break;
-      }
+      baseline = Fixed(row.run.baselineKB / 1024.0, 1);
+      break;
     }
-    notes.push_back("peak MiB: extra resident memory of one run -- each method runs in a forked child process whose "
-                    "getrusage(RUSAGE_SELF).ru_maxrss (peak reset at the child's start via /proc/self/clear_refs) "
-                    "minus its resident set at the start (the input loaded, shared with the parent: " +
-                    baseline + " MiB). Counts the method's transient buffers and its output, not the input image.");
   }
-  else
-  {
-    notes.push_back("peak MiB: not measured (--no-fork, or not Linux).");
-  }
+  return "peak MiB: extra resident memory of one run -- each method runs in a forked child process whose "
+         "getrusage(RUSAGE_SELF).ru_maxrss (peak reset at the child's start via /proc/self/clear_refs) "
+         "minus its resident set at the start (the input loaded, shared with the parent: " +
+         baseline + " MiB). Counts the method's transient buffers and its output, not the input image.";
+}
+
+/** The notes on the methods: the threads, and each method's description and remarks. */
+void
+AddMethodNotes(const std::vector<Row> & rows, std::vector<std::string> & notes)
+{
   for (const Row & row : rows)
   {
     if (row.run.ok && !row.run.threads.empty())
@@ -476,6 +613,31 @@ Notes(const Input &            input,
     }
     notes.push_back(line + ".");
   }
+}
+
+std::vector<std::string>
+Notes(const Input &            input,
+      const std::vector<Row> & rows,
+      const std::string &      reference,
+      unsigned int             repeat,
+      bool                     forked)
+{
+  std::vector<std::string> notes;
+  notes.push_back("input: " + input.description + ".");
+  notes.push_back("quality: q_angle = smallest/largest angle, q_area = 4 sqrt(3) A / (sum of squared edges), means "
+                  "over triangles; '<0.3 %' = share of triangles with q_angle < 0.3; smooth = mean |2 pi - sum of "
+                  "angles| (radians) over interior vertices. Measured by TriangleMeshQualityCalculator on "
+                  "itk::Mesh<double,3>, the same for every method.");
+  notes.push_back("distances (mm) of the vertices and of the face centroids to the reference: " + reference +
+                  " (MeshSurfaceDistanceCalculator).");
+  notes.push_back("integrity: valid = closed, 2-manifold, consistently and outward oriented, no degenerate, inverted "
+                  "or self-intersecting triangles; nm-edges = non-manifold edges; bnd-edges = boundary edges; "
+                  "self-x = self-intersecting triangle pairs ('-' = not checked).");
+  notes.push_back("time: wall-clock seconds, best of " + std::to_string(repeat) +
+                  " runs, from the image in memory to the mesh in ITK physical space (VTK: the points mapped "
+                  "through the ITK direction and origin), conversions for measurement excluded.");
+  notes.push_back(MemoryNote(rows, forked));
+  AddMethodNotes(rows, notes);
   return notes;
 }
 
@@ -553,6 +715,53 @@ CSVQuote(const std::string & text)
   return quoted + '"';
 }
 
+/** The measured columns of a successful row in the CSV. */
+void
+WriteCSVMeasures(std::ostream & out, const Row & row)
+{
+  const auto & q = row.measured.quality;
+  const auto & d = row.measured.distance;
+  out << q.numberOfTriangles << ',' << q.numberOfReferencedPoints << ',' << q.qAngle.mean << ',' << q.qArea.mean << ','
+      << q.qAngle.minimum << ',' << 100.0 * q.fractionQAngleBelow03 << ',' << q.meanSmoothness << ','
+      << q.fractionValence6 << ',';
+  if (row.measured.hasDistance)
+  {
+    out << d.vertices.mean << ',' << d.vertices.rms << ',' << d.vertices.maximum << ',' << d.vertices.signedMean << ','
+        << d.faceCentroids.mean << ',' << d.faceCentroids.maximum << ',' << d.hausdorff << ',';
+  }
+  else
+  {
+    out << ",,,,,,,";
+  }
+  out << (q.IsValidClosedSurface() ? 1 : 0) << ',' << q.nonManifoldEdges << ',' << q.nonManifoldVertices << ','
+      << q.boundaryEdges << ',' << q.selfIntersectingPairs << ',' << q.degenerateTriangles << ','
+      << q.invertedTrianglesVersusOutward << ',' << q.inconsistentlyOrientedEdges << ',' << q.connectedComponents << ','
+      << q.eulerCharacteristic << ',';
+}
+
+/** The timing, memory and remark columns of a successful row in the CSV. */
+void
+WriteCSVRun(std::ostream & out, const RunRecord & run)
+{
+  out << run.BestSeconds() << ',';
+  std::string times;
+  for (double s : run.seconds)
+  {
+    times += (times.empty() ? "" : " ") + Fixed(s, 4);
+  }
+  out << times << ',';
+  const double mib = run.ExtraPeakMiB();
+  if (mib >= 0)
+  {
+    out << mib << ',' << run.baselineKB / 1024.0;
+  }
+  else
+  {
+    out << ',';
+  }
+  out << ',' << run.droppedPoints << ',' << CSVQuote(run.threads) << ',' << CSVQuote(run.notes) << ",\n";
+}
+
 void
 WriteCSV(const std::vector<Row> & rows, const std::string & path)
 {
@@ -570,49 +779,31 @@ WriteCSV(const std::vector<Row> & rows, const std::string & path)
   out << std::setprecision(9);
   for (const Row & row : rows)
   {
-    const auto & q = row.quality;
-    const auto & d = row.distance;
     out << row.method.key << ',' << CSVQuote(row.method.name) << ',' << (row.run.ok ? 1 : 0) << ',';
     if (row.run.ok)
     {
-      out << q.numberOfTriangles << ',' << q.numberOfReferencedPoints << ',' << q.qAngle.mean << ',' << q.qArea.mean
-          << ',' << q.qAngle.minimum << ',' << 100.0 * q.fractionQAngleBelow03 << ',' << q.meanSmoothness << ','
-          << q.fractionValence6 << ',';
-      if (row.hasDistance)
-      {
-        out << d.vertices.mean << ',' << d.vertices.rms << ',' << d.vertices.maximum << ',' << d.vertices.signedMean
-            << ',' << d.faceCentroids.mean << ',' << d.faceCentroids.maximum << ',' << d.hausdorff << ',';
-      }
-      else
-      {
-        out << ",,,,,,,";
-      }
-      out << (q.IsValidClosedSurface() ? 1 : 0) << ',' << q.nonManifoldEdges << ',' << q.nonManifoldVertices << ','
-          << q.boundaryEdges << ',' << q.selfIntersectingPairs << ',' << q.degenerateTriangles << ','
-          << q.invertedTrianglesVersusOutward << ',' << q.inconsistentlyOrientedEdges << ',' << q.connectedComponents
-          << ',' << q.eulerCharacteristic << ',' << row.run.BestSeconds() << ',';
-      std::string times;
-      for (double s : row.run.seconds)
-      {
-        times += (times.empty() ? "" : " ") + Fixed(s, 4);
-      }
-      out << times << ',';
-      const double mib = row.run.ExtraPeakMiB();
-      if (mib >= 0)
-      {
-        out << mib << ',' << row.run.baselineKB / 1024.0;
-      }
-      else
-      {
-        out << ',';
-      }
-      out << ',' << row.run.droppedPoints << ',' << CSVQuote(row.run.threads) << ',' << CSVQuote(row.run.notes)
-          << ",\n";
+      WriteCSVMeasures(out, row);
+      WriteCSVRun(out, row.run);
     }
     else
     {
       out << std::string(32, ',') << CSVQuote(row.run.error) << '\n';
     }
+  }
+}
+
+/** The table on stdout, and --markdown and --csv. */
+void
+WriteTables(const CLI::Arguments & args, const std::vector<Row> & rows, const std::vector<std::string> & notes)
+{
+  PrintTable(rows, notes, std::cout);
+  if (args.Has("markdown"))
+  {
+    WriteMarkdown(rows, notes, args.Get("markdown"));
+  }
+  if (args.Has("csv"))
+  {
+    WriteCSV(rows, args.Get("csv"));
   }
 }
 
@@ -624,130 +815,26 @@ Run(const CLI::Arguments & args)
     ListMethods(std::cout);
     return 0;
   }
-  const long repeat = args.GetInteger("repeat", kDefaultRepeat);
-  if (repeat < 1)
-  {
-    throw CLI::UsageError("--repeat must be >= 1");
-  }
-  const long threads = args.GetInteger("threads", 0);
-  if (threads < 0)
-  {
-    throw CLI::UsageError("--threads must be >= 0");
-  }
-  const std::vector<Method> methods = SelectMethods(args);
-  const bool                forked = !args.Has("no-fork") && kCanMeasurePeakMemory;
-
-  Input input = LoadInput(args);
+  const RunSettings settings = ReadRunSettings(args);
+  Input             input = LoadInput(args);
   std::cerr << kProgram << ": " << input.description << '\n';
+  Reference reference = ChooseReference(args, input);
 
-  // The reference for the distances.
-  std::string reference = args.Get("reference", input.exactSurface ? "exact" : "none");
-  if (args.Has("reference-mesh"))
+  std::vector<Row> rows = RunMethods(input, settings);
+  if (reference.kind == "marching-cubes")
   {
-    if (args.Has("reference"))
-    {
-      throw CLI::UsageError("give either --reference or --reference-mesh, not both");
-    }
-    reference = "mesh";
+    UseMarchingCubesReference(rows, input, settings, reference);
   }
-  if (reference != "exact" && reference != "marching-cubes" && reference != "none" && reference != "mesh")
-  {
-    throw CLI::UsageError("--reference must be exact, marching-cubes or none, got '" + reference + "'");
-  }
-  if (reference == "exact" && !input.exactSurface)
-  {
-    throw CLI::UsageError("--reference exact needs a phantom; for an image use --reference-mesh FILE or "
-                          "--reference marching-cubes");
-  }
-  MeshType::Pointer referenceMesh;
-  std::string       referenceText = "none";
-  if (reference == "mesh")
-  {
-    referenceMesh = CLI::ReadMeshFile(args.Get("reference-mesh"));
-    referenceText = "the mesh " + args.Get("reference-mesh");
-  }
-  else if (reference == "exact")
-  {
-    referenceText = "the phantom's exact surface";
-  }
-
-  std::vector<Row> rows;
-  for (const Method & method : methods)
-  {
-    std::cerr << "running " << method.name << " (" << repeat << "x" << (forked ? ", in a child process" : "") << ")\n";
-    Row row;
-    row.method = method;
-    row.run =
-      forked
-        ? RunInChildProcess(
-            method, input.extraction, static_cast<unsigned int>(repeat), static_cast<unsigned int>(threads))
-        : RunInProcess(
-            method, input.extraction, static_cast<unsigned int>(repeat), static_cast<unsigned int>(threads), false);
-    if (row.run.ok)
-    {
-      std::cerr << "  " << row.run.mesh.triangles.size() << " triangles, best " << std::fixed << std::setprecision(3)
-                << row.run.BestSeconds() << " s" << std::defaultfloat << '\n';
-    }
-    else
-    {
-      std::cerr << "  failed: " << row.run.error << '\n';
-    }
-    rows.push_back(std::move(row));
-  }
-
-  if (reference == "marching-cubes")
-  {
-    const Row * mc = nullptr;
-    for (const Row & row : rows)
-    {
-      mc = (row.method.key == "mc" && row.run.ok) ? &row : mc;
-    }
-    RunRecord computed;
-    if (mc == nullptr)
-    {
-      computed = RunInProcess(FindMethod("mc"), input.extraction, 1, static_cast<unsigned int>(threads), false);
-      if (!computed.ok)
-      {
-        itkGenericExceptionMacro("the marching-cubes reference failed: " << computed.error);
-      }
-    }
-    referenceMesh = MeshType::New();
-    ME::FillMesh(mc != nullptr ? mc->run.mesh : computed.mesh, *referenceMesh);
-    referenceText =
-      "the plain vtkMarchingCubes iso-surface (" + std::to_string(referenceMesh->GetNumberOfCells()) + " triangles)";
-  }
-
   std::cerr << "measuring\n";
   MeasureRows(rows,
-              referenceMesh.GetPointer(),
-              reference == "exact" ? input.exactSurface.GetPointer() : nullptr,
+              reference.mesh.GetPointer(),
+              reference.kind == "exact" ? input.exactSurface.GetPointer() : nullptr,
               !args.Has("no-self-intersections"));
-
   if (args.Has("write-meshes"))
   {
-    const std::string directory = args.Get("write-meshes");
-    itksys::SystemTools::MakeDirectory(directory);
-    for (const Row & row : rows)
-    {
-      if (row.run.ok)
-      {
-        auto mesh = MeshType::New();
-        ME::FillMesh(row.run.mesh, *mesh);
-        CLI::WriteMeshFile(mesh.GetPointer(), directory + "/" + row.method.key + ".vtk");
-      }
-    }
+    WriteMeshes(rows, args.Get("write-meshes"));
   }
-
-  const auto notes = Notes(input, rows, referenceText, static_cast<unsigned int>(repeat), forked);
-  PrintTable(rows, notes, std::cout);
-  if (args.Has("markdown"))
-  {
-    WriteMarkdown(rows, notes, args.Get("markdown"));
-  }
-  if (args.Has("csv"))
-  {
-    WriteCSV(rows, args.Get("csv"));
-  }
+  WriteTables(args, rows, Notes(input, rows, reference.text, settings.repeat, settings.forked));
   for (const Row & row : rows)
   {
     if (!row.run.ok)

@@ -26,18 +26,16 @@
 //
 // Run `meshextraction COMMAND --help` for the options of each command.
 
-#include "MeshExtractionExtractCommand.h"
-#include "MeshExtractionImproveCommand.h"
-#include "MeshExtractionPhantomCommand.h"
-#include "MeshExtractionQualityCommand.h"
-#include "MeshExtractionRefineCommand.h"
-#include "MeshExtractionReportCommand.h"
+#include "MeshExtractionCLI.h"
+
+#include <iomanip>
+#include <iostream>
 
 using namespace MeshExtractionCLI;
 
 namespace
 {
-/** Every subcommand; each lives in its own MeshExtraction*Command.h. */
+/** Every subcommand; each lives in its own cli/MeshExtraction<Name>Command.cxx. */
 std::vector<Command>
 Commands()
 {

@@ -20,7 +20,7 @@
 // Phantoms on their default grids (64^3 voxels of 1 mm: distances in mm are voxels),
 // distance maps extracted at iso 0 with the inside below.
 
-#include "meshextraction-compare-methods.h"
+#include "MeshExtractionVTKPeers.h"
 
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshSurfaceDistanceCalculator.h"

@@ -15,38 +15,22 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-#ifndef meshextraction_compare_runner_h
-#define meshextraction_compare_runner_h
+// Timing and peak memory of the comparison's methods (see MeshExtractionVTKPeersRunner.h).
 
-// Runs one method of meshextraction-compare --repeat times: the best run is its wall
-// time, the first run also gives its peak memory.
-//
-// Peak memory (Linux): the method runs in a forked child process. The child
-// resets its resident-set high-water mark (writing 5 to /proc/self/clear_refs),
-// reads its resident set size (/proc/self/statm) as the baseline -- the parent's
-// pages after the input was loaded, shared copy-on-write --, runs the method once and
-// reads its own peak, getrusage(RUSAGE_SELF).ru_maxrss. Peak minus baseline is the
-// memory the method needed on top of the loaded input: its transient buffers and its
-// output. The child then runs the remaining repetitions for the timing, converts the
-// last output to flat arrays and sends everything back through a pipe. Running every
-// method in its own child also keeps one method's freed-but-cached heap from hiding
-// another's, and keeps VTK's TBB thread pool out of the parent (TBB is not fork-safe).
+#include "MeshExtractionVTKPeersRunner.h"
 
-#include "meshextraction-compare-methods.h"
+#include "itkMultiThreaderBase.h"
 
 #include <vtkSMPTools.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <string>
-#include <vector>
 
 #if defined(__linux__)
 #  define MESHEXTRACTION_COMPARE_FORK 1
@@ -62,43 +46,37 @@
 
 namespace MeshExtractionCompare
 {
-/** Everything one method's runs produced. */
-struct RunRecord
+double
+RunRecord::BestSeconds() const
 {
-  bool                    ok{ false };
-  std::string             error;
-  std::vector<double>     seconds;          ///< wall time of each run
-  std::int64_t            baselineKB{ -1 }; ///< resident set before the run (-1: not measured)
-  std::int64_t            peakKB{ -1 };     ///< peak resident set during the first run (-1: not measured)
-  std::string             notes;
-  std::string             threads;            ///< the parallelism the run had
-  std::uint64_t           droppedPoints{ 0 }; ///< unreferenced points left out of `mesh`
-  ME::IndexedTriangleMesh mesh;               ///< the last run's mesh, ITK physical space, outward
-
-  double
-  BestSeconds() const
+  double best = seconds.empty() ? 0.0 : seconds.front();
+  for (double s : seconds)
   {
-    double best = seconds.empty() ? 0.0 : seconds.front();
-    for (double s : seconds)
-    {
-      best = std::min(best, s);
-    }
-    return best;
+    best = std::min(best, s);
   }
-  /** Peak minus baseline, in MiB; negative if not measured. */
-  double
-  ExtraPeakMiB() const
-  {
-    return (peakKB < 0 || baselineKB < 0) ? -1.0 : std::max<std::int64_t>(0, peakKB - baselineKB) / 1024.0;
-  }
-};
+  return best;
+}
 
-/** Whether peak memory is measured (forked children, Linux's /proc and ru_maxrss in KiB). */
-constexpr bool kCanMeasurePeakMemory = MESHEXTRACTION_COMPARE_FORK != 0;
+double
+RunRecord::ExtraPeakMiB() const
+{
+  return (peakKB < 0 || baselineKB < 0) ? -1.0 : std::max<std::int64_t>(0, peakKB - baselineKB) / 1024.0;
+}
 
+bool
+CanMeasurePeakMemory()
+{
+  return MESHEXTRACTION_COMPARE_FORK != 0;
+}
+
+namespace
+{
+// ------------------------------------------------------------------------------
+// Resident memory
+// ------------------------------------------------------------------------------
 #if MESHEXTRACTION_COMPARE_FORK
 /** Resident set size of this process in KiB (from /proc/self/statm), -1 if unknown. */
-inline std::int64_t
+std::int64_t
 CurrentResidentKB()
 {
   std::ifstream statm("/proc/self/statm");
@@ -112,7 +90,7 @@ CurrentResidentKB()
 }
 
 /** getrusage(RUSAGE_SELF).ru_maxrss, in KiB on Linux. */
-inline std::int64_t
+std::int64_t
 PeakResidentKB()
 {
   struct rusage usage;
@@ -122,7 +100,7 @@ PeakResidentKB()
 }
 
 /** Reset the resident-set high-water mark (Linux >= 4.0); false if not possible. */
-inline bool
+bool
 ResetPeakResident()
 {
   FILE * f = std::fopen("/proc/self/clear_refs", "w");
@@ -134,17 +112,17 @@ ResetPeakResident()
   return std::fclose(f) == 0 && ok;
 }
 #else
-inline std::int64_t
+std::int64_t
 CurrentResidentKB()
 {
   return -1;
 }
-inline std::int64_t
+std::int64_t
 PeakResidentKB()
 {
   return -1;
 }
-inline bool
+bool
 ResetPeakResident()
 {
   return false;
@@ -152,7 +130,7 @@ ResetPeakResident()
 #endif
 
 /** Thread settings for a run: ITK work units and VTK SMP threads (0: all cores). */
-inline std::string
+std::string
 ApplyThreadSettings(ExtractionInput & input, unsigned int threads)
 {
   if (threads > 0)
@@ -172,10 +150,34 @@ ApplyThreadSettings(ExtractionInput & input, unsigned int threads)
   return os.str();
 }
 
-/** Run `method` `repeat` times in this process. With `measureMemory`, the peak of the
- * first run is read (the caller must have reset the high-water mark and read the
- * baseline just before). */
-inline RunRecord
+/** The timed runs; the last one's mesh, as the comparison measures it, goes into `record`. */
+void
+TimeRuns(const Method &          method,
+         const ExtractionInput & input,
+         unsigned int            repeat,
+         bool                    measureMemory,
+         RunRecord &             record)
+{
+  MethodOutput last;
+  for (unsigned int r = 0; r < std::max(1u, repeat); ++r)
+  {
+    last = MethodOutput{}; // the previous output is freed before the next run
+    const auto start = std::chrono::steady_clock::now();
+    last = method.run(input);
+    record.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (r == 0 && measureMemory)
+    {
+      record.peakKB = PeakResidentKB();
+    }
+  }
+  record.notes = last.notes;
+  std::size_t dropped = 0;
+  record.mesh = MeshForMeasurement(last, &dropped);
+  record.droppedPoints = dropped;
+}
+} // namespace
+
+RunRecord
 RunInProcess(const Method &  method,
              ExtractionInput input,
              unsigned int    repeat,
@@ -191,22 +193,7 @@ RunInProcess(const Method &  method,
   }
   try
   {
-    MethodOutput last;
-    for (unsigned int r = 0; r < std::max(1u, repeat); ++r)
-    {
-      last = MethodOutput{}; // the previous output is freed before the next run
-      const auto start = std::chrono::steady_clock::now();
-      last = method.run(input);
-      record.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      if (r == 0 && measureMemory)
-      {
-        record.peakKB = PeakResidentKB();
-      }
-    }
-    record.notes = last.notes;
-    std::size_t dropped = 0;
-    record.mesh = MeshForMeasurement(last, &dropped);
-    record.droppedPoints = dropped;
+    TimeRuns(method, input, repeat, measureMemory, record);
     record.ok = true;
   }
   catch (const itk::ExceptionObject & e)
@@ -220,10 +207,13 @@ RunInProcess(const Method &  method,
   return record;
 }
 
-// --- serialisation of a RunRecord through the pipe ------------------------------
-namespace Detail
+// ------------------------------------------------------------------------------
+// A RunRecord through the pipe (only with fork())
+// ------------------------------------------------------------------------------
+#if MESHEXTRACTION_COMPARE_FORK
+namespace
 {
-inline void
+void
 Put(std::string & buffer, const void * data, std::size_t bytes)
 {
   buffer.append(static_cast<const char *>(data), bytes);
@@ -234,7 +224,7 @@ PutValue(std::string & buffer, const T & value)
 {
   Put(buffer, &value, sizeof(T));
 }
-inline void
+void
 PutString(std::string & buffer, const std::string & s)
 {
   PutValue<std::uint64_t>(buffer, s.size());
@@ -280,38 +270,69 @@ private:
 };
 
 constexpr std::uint32_t kMagic = 0x4d454331; // "MEC1"
-} // namespace Detail
 
-inline std::string
+/** The mesh of a record: its points, then its triangles. */
+void
+PutMesh(std::string & b, const ME::IndexedTriangleMesh & mesh)
+{
+  PutValue<std::uint64_t>(b, mesh.points.size());
+  for (const auto & p : mesh.points)
+  {
+    const double xyz[3] = { p[0], p[1], p[2] };
+    Put(b, xyz, sizeof(xyz));
+  }
+  PutValue<std::uint64_t>(b, mesh.triangles.size());
+  Put(b, mesh.triangles.data(), mesh.triangles.size() * sizeof(ME::TriangleIndices));
+}
+
+ME::IndexedTriangleMesh
+GetMesh(Reader & in)
+{
+  ME::IndexedTriangleMesh mesh;
+  const auto              numberOfPoints = in.GetValue<std::uint64_t>();
+  mesh.points.resize(numberOfPoints);
+  mesh.pointIds.resize(numberOfPoints);
+  for (std::uint64_t i = 0; i < numberOfPoints; ++i)
+  {
+    double xyz[3];
+    in.Get(xyz, sizeof(xyz));
+    mesh.points[i] = ME::MakeVec3(xyz[0], xyz[1], xyz[2]);
+    mesh.pointIds[i] = static_cast<itk::IdentifierType>(i);
+  }
+  const auto numberOfTriangles = in.GetValue<std::uint64_t>();
+  mesh.triangles.resize(numberOfTriangles);
+  in.Get(mesh.triangles.data(), numberOfTriangles * sizeof(ME::TriangleIndices));
+  mesh.cellIds.resize(numberOfTriangles);
+  for (std::uint64_t i = 0; i < numberOfTriangles; ++i)
+  {
+    mesh.cellIds[i] = static_cast<itk::IdentifierType>(i);
+  }
+  return mesh;
+}
+
+std::string
 SerializeRecord(const RunRecord & r)
 {
   std::string b;
-  Detail::PutValue(b, Detail::kMagic);
-  Detail::PutValue<std::uint8_t>(b, r.ok ? 1 : 0);
-  Detail::PutString(b, r.error);
-  Detail::PutValue<std::uint64_t>(b, r.seconds.size());
-  Detail::Put(b, r.seconds.data(), r.seconds.size() * sizeof(double));
-  Detail::PutValue(b, r.baselineKB);
-  Detail::PutValue(b, r.peakKB);
-  Detail::PutString(b, r.notes);
-  Detail::PutString(b, r.threads);
-  Detail::PutValue(b, r.droppedPoints);
-  Detail::PutValue<std::uint64_t>(b, r.mesh.points.size());
-  for (const auto & p : r.mesh.points)
-  {
-    const double xyz[3] = { p[0], p[1], p[2] };
-    Detail::Put(b, xyz, sizeof(xyz));
-  }
-  Detail::PutValue<std::uint64_t>(b, r.mesh.triangles.size());
-  Detail::Put(b, r.mesh.triangles.data(), r.mesh.triangles.size() * sizeof(ME::TriangleIndices));
+  PutValue(b, kMagic);
+  PutValue<std::uint8_t>(b, r.ok ? 1 : 0);
+  PutString(b, r.error);
+  PutValue<std::uint64_t>(b, r.seconds.size());
+  Put(b, r.seconds.data(), r.seconds.size() * sizeof(double));
+  PutValue(b, r.baselineKB);
+  PutValue(b, r.peakKB);
+  PutString(b, r.notes);
+  PutString(b, r.threads);
+  PutValue(b, r.droppedPoints);
+  PutMesh(b, r.mesh);
   return b;
 }
 
-inline RunRecord
+RunRecord
 DeserializeRecord(const std::string & buffer)
 {
-  Detail::Reader in(buffer);
-  if (in.GetValue<std::uint32_t>() != Detail::kMagic)
+  Reader in(buffer);
+  if (in.GetValue<std::uint32_t>() != kMagic)
   {
     itkGenericExceptionMacro("meshextraction-compare: unexpected data from the child process");
   }
@@ -325,29 +346,17 @@ DeserializeRecord(const std::string & buffer)
   r.notes = in.GetString();
   r.threads = in.GetString();
   r.droppedPoints = in.GetValue<std::uint64_t>();
-  const auto numberOfPoints = in.GetValue<std::uint64_t>();
-  r.mesh.points.resize(numberOfPoints);
-  r.mesh.pointIds.resize(numberOfPoints);
-  for (std::uint64_t i = 0; i < numberOfPoints; ++i)
-  {
-    double xyz[3];
-    in.Get(xyz, sizeof(xyz));
-    r.mesh.points[i] = ME::MakeVec3(xyz[0], xyz[1], xyz[2]);
-    r.mesh.pointIds[i] = static_cast<itk::IdentifierType>(i);
-  }
-  const auto numberOfTriangles = in.GetValue<std::uint64_t>();
-  r.mesh.triangles.resize(numberOfTriangles);
-  in.Get(r.mesh.triangles.data(), numberOfTriangles * sizeof(ME::TriangleIndices));
-  r.mesh.cellIds.resize(numberOfTriangles);
-  for (std::uint64_t i = 0; i < numberOfTriangles; ++i)
-  {
-    r.mesh.cellIds[i] = static_cast<itk::IdentifierType>(i);
-  }
+  r.mesh = GetMesh(in);
   return r;
 }
+} // namespace
 
-#if MESHEXTRACTION_COMPARE_FORK
-inline bool
+// ------------------------------------------------------------------------------
+// The child process
+// ------------------------------------------------------------------------------
+namespace
+{
+bool
 WriteAll(int fd, const std::string & data)
 {
   std::size_t written = 0;
@@ -367,8 +376,63 @@ WriteAll(int fd, const std::string & data)
   return true;
 }
 
-/** Run `method` in a forked child (see the top of this file for what is measured). */
-inline RunRecord
+/** Everything the child sent until it closed the pipe. */
+std::string
+ReadAll(int fd)
+{
+  std::string buffer;
+  char        chunk[1 << 16];
+  for (;;)
+  {
+    const ssize_t n = ::read(fd, chunk, sizeof(chunk));
+    if (n < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (n <= 0)
+    {
+      break;
+    }
+    buffer.append(chunk, static_cast<std::size_t>(n));
+  }
+  return buffer;
+}
+
+/** The child's part: run, send the record through `fd`, and leave without running
+ * static destructors (TBB, ITK). */
+[[noreturn]] void
+RunChild(const Method & method, const ExtractionInput & input, unsigned int repeat, unsigned int threads, int fd)
+{
+  const RunRecord record = RunInProcess(method, input, repeat, threads, true);
+  const bool      ok = WriteAll(fd, SerializeRecord(record));
+  ::close(fd);
+  std::cerr.flush();
+  ::_exit(ok ? 0 : 3);
+}
+
+/** The record the child sent, or a failed one that says how the child ended. */
+RunRecord
+RecordFromChild(int status, const std::string & buffer)
+{
+  if (WIFSIGNALED(status))
+  {
+    RunRecord failed;
+    failed.error = "the child process running it was killed by signal " + std::to_string(WTERMSIG(status)) + " (" +
+                   strsignal(WTERMSIG(status)) + ")";
+    return failed;
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || buffer.empty())
+  {
+    RunRecord failed;
+    failed.error = "the child process running it failed (exit status " +
+                   std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
+    return failed;
+  }
+  return DeserializeRecord(buffer);
+}
+} // namespace
+
+RunRecord
 RunInChildProcess(const Method & method, const ExtractionInput & input, unsigned int repeat, unsigned int threads)
 {
   int fds[2];
@@ -389,51 +453,18 @@ RunInChildProcess(const Method & method, const ExtractionInput & input, unsigned
   if (pid == 0)
   {
     ::close(fds[0]);
-    const RunRecord record = RunInProcess(method, input, repeat, threads, true);
-    const bool      ok = WriteAll(fds[1], SerializeRecord(record));
-    ::close(fds[1]);
-    std::cerr.flush();
-    ::_exit(ok ? 0 : 3); // no static destructors (TBB, ITK) in the child
+    RunChild(method, input, repeat, threads, fds[1]);
   }
   ::close(fds[1]);
-  std::string buffer;
-  char        chunk[1 << 16];
-  for (;;)
-  {
-    const ssize_t n = ::read(fds[0], chunk, sizeof(chunk));
-    if (n < 0 && errno == EINTR)
-    {
-      continue;
-    }
-    if (n <= 0)
-    {
-      break;
-    }
-    buffer.append(chunk, static_cast<std::size_t>(n));
-  }
+  const std::string buffer = ReadAll(fds[0]);
   ::close(fds[0]);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
   {}
-  if (WIFSIGNALED(status))
-  {
-    RunRecord failed;
-    failed.error = "the child process running it was killed by signal " + std::to_string(WTERMSIG(status)) + " (" +
-                   strsignal(WTERMSIG(status)) + ")";
-    return failed;
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || buffer.empty())
-  {
-    RunRecord failed;
-    failed.error = "the child process running it failed (exit status " +
-                   std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
-    return failed;
-  }
-  return DeserializeRecord(buffer);
+  return RecordFromChild(status, buffer);
 }
 #else
-/** Without fork(): the runs happen in this process and peak memory is not measured. */
-inline RunRecord
+RunRecord
 RunInChildProcess(const Method & method, const ExtractionInput & input, unsigned int repeat, unsigned int threads)
 {
   return RunInProcess(method, input, repeat, threads, false);
@@ -441,5 +472,3 @@ RunInChildProcess(const Method & method, const ExtractionInput & input, unsigned
 #endif
 
 } // namespace MeshExtractionCompare
-
-#endif

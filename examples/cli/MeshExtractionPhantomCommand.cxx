@@ -15,19 +15,22 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-#ifndef MeshExtractionPhantomCommand_h
-#define MeshExtractionPhantomCommand_h
+// meshextraction phantom: one of the module's analytic phantoms rendered into an image.
 
-#include "MeshExtractionCommandHelpers.h"
+#include "MeshExtractionCLI.h"
+
 #include "itkImplicitSurfaceImageSource.h"
+
+#include <iostream>
 
 namespace MeshExtractionCLI
 {
-// ------------------------------------------------------------------------------
-// phantom
-// ------------------------------------------------------------------------------
+namespace
+{
+using PhantomImage = itk::MeshExtractionEnums::PhantomImage;
+
 template <typename TPixel>
-inline void
+void
 WritePhantom(ME::PhantomShape                   shape,
              const ME::PhantomGrid &            grid,
              const ME::PhantomImageParameters & parameters,
@@ -40,48 +43,42 @@ WritePhantom(ME::PhantomShape                   shape,
   WriteImageFile(source->GetOutput(), output);
 }
 
-inline int
-RunPhantom(const Arguments & args)
+/** --image-mode: what the voxels hold; a mask is 1 inside and 0 outside unless --inside says otherwise. */
+void
+ReadImageMode(const Arguments & args, ME::PhantomImageParameters & p)
 {
-  if (args.positional[0] == "list")
+  const std::string mode = args.Get("image-mode");
+  if (mode == "distance")
   {
-    for (auto shape : ME::AllPhantomShapes())
-    {
-      std::cout << ME::PhantomShapeName(shape) << '\n';
-    }
-    return 0;
+    p.mode = PhantomImage::DistanceMap;
   }
-  if (args.positional.size() != 2)
+  else if (mode == "mask")
   {
-    throw UsageError("'phantom' expects NAME and OUTPUT (or 'list')");
+    p.mode = PhantomImage::BinaryMask;
   }
-  const ME::PhantomShape     shape = ShapeFromName(args.positional[0]);
-  const ME::PhantomGrid      grid = GridFromArguments(shape, args);
+  else if (mode == "step")
+  {
+    p.mode = PhantomImage::BlurredStep;
+  }
+  else
+  {
+    throw UsageError("--image-mode must be distance, mask or step, got '" + mode + "'");
+  }
+  if (p.mode == PhantomImage::BinaryMask && !args.Has("inside"))
+  {
+    p.insideValue = 1.0;
+    p.outsideValue = 0.0;
+  }
+}
+
+/** The phantom's default image parameters, changed by the options given. */
+ME::PhantomImageParameters
+ImageParametersFromArguments(ME::PhantomShape shape, const Arguments & args)
+{
   ME::PhantomImageParameters p = ME::DefaultPhantomImageParameters(shape);
   if (args.Has("image-mode"))
   {
-    const std::string mode = args.Get("image-mode");
-    if (mode == "distance")
-    {
-      p.mode = itk::MeshExtractionEnums::PhantomImage::DistanceMap;
-    }
-    else if (mode == "mask")
-    {
-      p.mode = itk::MeshExtractionEnums::PhantomImage::BinaryMask;
-    }
-    else if (mode == "step")
-    {
-      p.mode = itk::MeshExtractionEnums::PhantomImage::BlurredStep;
-    }
-    else
-    {
-      throw UsageError("--image-mode must be distance, mask or step, got '" + mode + "'");
-    }
-    if (p.mode == itk::MeshExtractionEnums::PhantomImage::BinaryMask && !args.Has("inside"))
-    {
-      p.insideValue = 1.0;
-      p.outsideValue = 0.0;
-    }
+    ReadImageMode(args, p);
   }
   p.distanceScale = args.GetDouble("distance-scale", p.distanceScale);
   p.insideValue = args.GetDouble("inside", p.insideValue);
@@ -89,11 +86,17 @@ RunPhantom(const Arguments & args)
   p.edgeWidth = args.GetDouble("edge-width", p.edgeWidth);
   p.noiseStandardDeviation = args.GetDouble("noise", p.noiseStandardDeviation);
   p.noiseSeed = static_cast<std::uint64_t>(args.GetInteger("seed", static_cast<long>(p.noiseSeed)));
-  const std::string   defaultType = p.mode == itk::MeshExtractionEnums::PhantomImage::BinaryMask ? "uchar" : "float";
-  const std::string   type = args.Get("pixel-type", defaultType);
-  const std::string & output = args.positional[1];
-  std::cerr << "phantom " << ME::PhantomShapeName(shape) << ": " << grid.size << " voxels of " << grid.spacing
-            << " mm, " << p.mode << ", " << type << " -> " << output << '\n';
+  return p;
+}
+
+/** Writes the phantom with the pixel type named by --pixel-type. */
+void
+WritePhantomOfType(const std::string &                type,
+                   ME::PhantomShape                   shape,
+                   const ME::PhantomGrid &            grid,
+                   const ME::PhantomImageParameters & p,
+                   const std::string &                output)
+{
   if (type == "float")
   {
     WritePhantom<float>(shape, grid, p, output);
@@ -118,10 +121,37 @@ RunPhantom(const Arguments & args)
   {
     throw UsageError("--pixel-type must be uchar, short, ushort, float or double, got '" + type + "'");
   }
-  return 0;
 }
 
-inline Command
+int
+RunPhantom(const Arguments & args)
+{
+  if (args.positional[0] == "list")
+  {
+    for (auto shape : ME::AllPhantomShapes())
+    {
+      std::cout << ME::PhantomShapeName(shape) << '\n';
+    }
+    return 0;
+  }
+  if (args.positional.size() != 2)
+  {
+    throw UsageError("'phantom' expects NAME and OUTPUT (or 'list')");
+  }
+  const ME::PhantomShape           shape = ShapeFromName(args.positional[0]);
+  const ME::PhantomGrid            grid = GridFromArguments(shape, args);
+  const ME::PhantomImageParameters p = ImageParametersFromArguments(shape, args);
+  const std::string                defaultType = p.mode == PhantomImage::BinaryMask ? "uchar" : "float";
+  const std::string                type = args.Get("pixel-type", defaultType);
+  const std::string &              output = args.positional[1];
+  std::cerr << "phantom " << ME::PhantomShapeName(shape) << ": " << grid.size << " voxels of " << grid.spacing
+            << " mm, " << p.mode << ", " << type << " -> " << output << '\n';
+  WritePhantomOfType(type, shape, grid, p, output);
+  return 0;
+}
+} // namespace
+
+Command
 MakePhantomCommand()
 {
   Command c;
@@ -147,6 +177,5 @@ MakePhantomCommand()
   c.run = RunPhantom;
   return c;
 }
-} // namespace MeshExtractionCLI
 
-#endif
+} // namespace MeshExtractionCLI

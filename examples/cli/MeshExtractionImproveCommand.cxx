@@ -15,30 +15,33 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-#ifndef MeshExtractionImproveCommand_h
-#define MeshExtractionImproveCommand_h
+// meshextraction improve: edge swaps, then Laplacian or Taubin smoothing that never
+// inverts a triangle.
 
-#include "MeshExtractionCommandHelpers.h"
-#include "MeshExtractionQualityCommand.h"
+#include "MeshExtractionCLI.h"
+
 #include "itkEdgeSwapQuadEdgeMeshFilter.h"
 #include "itkLaplacianSmoothingQuadEdgeMeshFilter.h"
-#include "itkQuadEdgeMesh.h"
 #include "itkTaubinSmoothingQuadEdgeMeshFilter.h"
-#include "itkTriangleMeshQualityCalculator.h"
+
+#include <iomanip>
+#include <iostream>
 
 namespace MeshExtractionCLI
 {
-// ------------------------------------------------------------------------------
-// improve
-// ------------------------------------------------------------------------------
-using ImproveMeshType = itk::QuadEdgeMesh<double, 3>;
+namespace
+{
+using ImproveMeshType = QuadEdgeMeshType;
+using SwapFilterType = itk::EdgeSwapQuadEdgeMeshFilter<ImproveMeshType>;
+using LaplacianFilterType = itk::LaplacianSmoothingQuadEdgeMeshFilter<ImproveMeshType>;
+using TaubinFilterType = itk::TaubinSmoothingQuadEdgeMeshFilter<ImproveMeshType>;
 
 using SmoothingWeights = itk::MeshExtractionEnums::SmoothingWeights;
 using SmoothingUpdate = itk::MeshExtractionEnums::SmoothingUpdate;
 using MovementConstraint = itk::MeshExtractionEnums::MovementConstraint;
 using EdgeSwapCriterion = itk::MeshExtractionEnums::EdgeSwapCriterion;
 
-inline const OptionNames<std::string> &
+const OptionNames<std::string> &
 SmoothingNames()
 {
   static const OptionNames<std::string> table = { { "laplacian", "laplacian" },
@@ -47,7 +50,7 @@ SmoothingNames()
   return table;
 }
 
-inline const OptionNames<SmoothingWeights> &
+const OptionNames<SmoothingWeights> &
 WeightNames()
 {
   static const OptionNames<SmoothingWeights> table = { { "uniform", SmoothingWeights::Uniform },
@@ -58,7 +61,7 @@ WeightNames()
   return table;
 }
 
-inline const OptionNames<SmoothingUpdate> &
+const OptionNames<SmoothingUpdate> &
 UpdateNames()
 {
   static const OptionNames<SmoothingUpdate> table = { { "batch", SmoothingUpdate::Batch },
@@ -66,7 +69,7 @@ UpdateNames()
   return table;
 }
 
-inline const OptionNames<MovementConstraint> &
+const OptionNames<MovementConstraint> &
 ConstraintNames()
 {
   static const OptionNames<MovementConstraint> table = { { "none", MovementConstraint::None },
@@ -75,26 +78,13 @@ ConstraintNames()
   return table;
 }
 
-inline const OptionNames<EdgeSwapCriterion> &
+const OptionNames<EdgeSwapCriterion> &
 SwapCriterionNames()
 {
   static const OptionNames<EdgeSwapCriterion> table = { { "regularity", EdgeSwapCriterion::Regularity },
                                                         { "delaunay", EdgeSwapCriterion::Delaunay },
                                                         { "shortest-edge", EdgeSwapCriterion::ShortestEdge } };
   return table;
-}
-
-/** A line for the vertices the smoothing filters moved back where the surface would
- * have crossed itself (PreventSelfIntersections), if there were any. */
-inline void
-PrintUndoneMoves(itk::SizeValueType undone)
-{
-  if (undone > 0)
-  {
-    std::cout << "  " << undone
-              << " vertex moves undone where the surface would have cut through itself, folded, or collapsed or passed "
-                 "a component\n";
-  }
 }
 
 /** The tool's own defaults, where they are not the filters': Laplacian smoothing
@@ -108,55 +98,24 @@ struct ImproveDefaults
   static constexpr EdgeSwapCriterion  criterion = EdgeSwapCriterion::Regularity;
 };
 
-/** Reads any mesh ITK reads into a triangle QuadEdgeMesh (quadrilaterals are split
- * along their shorter diagonal); a mesh the quad-edge structure cannot hold
- * (non-manifold edges, inconsistent orientation) is refused with a clear error. */
-inline ImproveMeshType::Pointer
-ReadManifoldMesh(const std::string & path)
+/** The choices of one `improve` run. The weights and the update mode start as the
+ * filters' defaults (the Laplacian and Taubin filters share them). */
+struct ImproveOptions
 {
-  const IOMeshType::Pointer     mesh = ReadMeshFile(path);
-  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
-  auto                          out = ImproveMeshType::New();
-  try
-  {
-    ME::FillMesh(triangles, *out);
-  }
-  catch (const itk::ExceptionObject & e)
-  {
-    itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which "
-                                 << "'improve' needs: " << Describe(e));
-  }
-  return out;
-}
+  std::string        smoothing;
+  SmoothingWeights   weights{};
+  SmoothingUpdate    update{};
+  MovementConstraint constraint{};
+  bool               swap{ false };
+  EdgeSwapCriterion  criterion{};
+  long               iterations{ 0 };
+  long               swapIterations{ 0 };
+};
 
-inline MeasuredMesh
-MeasureForImprove(const ImproveMeshType * mesh, const std::string & name)
+/** A UsageError for each option given that the other choices make meaningless. */
+void
+CheckOptionCombinations(const Arguments & args, const std::string & smoothing, bool swap)
 {
-  auto calculator = itk::TriangleMeshQualityCalculator<ImproveMeshType>::New();
-  calculator->SetMesh(mesh);
-  calculator->Compute();
-  MeasuredMesh m;
-  m.name = name;
-  m.quality = calculator->GetReport();
-  return m;
-}
-
-inline int
-RunImprove(const Arguments & args)
-{
-  // The weights and the update mode start as the filters' defaults (the Laplacian and
-  // Taubin filters share them).
-  const auto        laplacianDefaults = itk::LaplacianSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
-  const std::string smoothing =
-    ChooseOption(args, "smoothing", SmoothingNames(), std::string(ImproveDefaults::smoothing));
-  const SmoothingWeights   weights = ChooseOption(args, "weights", WeightNames(), laplacianDefaults->GetWeights());
-  const SmoothingUpdate    update = ChooseOption(args, "update", UpdateNames(), laplacianDefaults->GetUpdateMode());
-  const MovementConstraint constraint =
-    ChooseOption(args, "constraint", ConstraintNames(), ImproveDefaults::constraint);
-  const bool              swap = args.Has("swap");
-  const EdgeSwapCriterion criterion = ChooseOption(args, "swap", SwapCriterionNames(), ImproveDefaults::criterion);
-
-  // Options that only make sense with another choice.
   const char * laplacianOnly[] = { "constraint", "relaxation", "volume-preservation" };
   for (const char * option : laplacianOnly)
   {
@@ -193,122 +152,181 @@ RunImprove(const Arguments & args)
       throw UsageError(std::string("--") + option + " needs --swap");
     }
   }
-  const long iterations = args.GetInteger("iterations", ImproveDefaults::iterations);
-  if (iterations < 0)
-  {
-    throw UsageError("--iterations must be >= 0, got " + std::to_string(iterations));
-  }
-  const long swapIterations = args.GetInteger(
-    "swap-iterations", itk::EdgeSwapQuadEdgeMeshFilter<ImproveMeshType>::New()->GetMaximumNumberOfIterations());
-  if (swapIterations < 0)
-  {
-    throw UsageError("--swap-iterations must be >= 0, got " + std::to_string(swapIterations));
-  }
+}
 
+ImproveOptions
+ReadImproveOptions(const Arguments & args)
+{
+  const auto     laplacianDefaults = LaplacianFilterType::New();
+  ImproveOptions o;
+  o.smoothing = ChooseOption(args, "smoothing", SmoothingNames(), std::string(ImproveDefaults::smoothing));
+  o.weights = ChooseOption(args, "weights", WeightNames(), laplacianDefaults->GetWeights());
+  o.update = ChooseOption(args, "update", UpdateNames(), laplacianDefaults->GetUpdateMode());
+  o.constraint = ChooseOption(args, "constraint", ConstraintNames(), ImproveDefaults::constraint);
+  o.swap = args.Has("swap");
+  o.criterion = ChooseOption(args, "swap", SwapCriterionNames(), ImproveDefaults::criterion);
+  CheckOptionCombinations(args, o.smoothing, o.swap);
+  o.iterations = args.GetInteger("iterations", ImproveDefaults::iterations);
+  if (o.iterations < 0)
+  {
+    throw UsageError("--iterations must be >= 0, got " + std::to_string(o.iterations));
+  }
+  o.swapIterations = args.GetInteger("swap-iterations", SwapFilterType::New()->GetMaximumNumberOfIterations());
+  if (o.swapIterations < 0)
+  {
+    throw UsageError("--swap-iterations must be >= 0, got " + std::to_string(o.swapIterations));
+  }
+  return o;
+}
+
+// ------------------------------------------------------------------------------
+// The steps: swap, then smooth (thesis section 4.2.4: smoothing converges faster on
+// the regularised mesh)
+// ------------------------------------------------------------------------------
+
+/** A line for the vertices the smoothing filters moved back where the surface would
+ * have crossed itself (PreventSelfIntersections), if there were any. */
+void
+PrintUndoneMoves(itk::SizeValueType undone)
+{
+  if (undone > 0)
+  {
+    std::cout << "  " << undone
+              << " vertex moves undone where the surface would have cut through itself, folded, or collapsed or passed "
+                 "a component\n";
+  }
+}
+
+ImproveMeshType::Pointer
+SwapEdges(ImproveMeshType * mesh, const ImproveOptions & o, const Arguments & args)
+{
+  auto filter = SwapFilterType::New();
+  filter->SetInput(mesh);
+  filter->SetCriterion(o.criterion);
+  filter->SetMaximumNumberOfIterations(static_cast<int>(o.swapIterations));
+  filter->SetFeatureAngle(args.GetDouble("feature-angle", filter->GetFeatureAngle()));
+  filter->SetMinimumQAreaRatio(args.GetDouble("swap-quality", filter->GetMinimumQAreaRatio()));
+  ReportProgress(filter.GetPointer(), "edge swap");
+  filter->Update();
+  std::cout << "edge swap (" << args.Get("swap") << "): " << filter->GetNumberOfSwaps() << " swaps in "
+            << filter->GetNumberOfIterations() << " passes, " << filter->GetNumberOfRefusedSwaps()
+            << " improving swaps refused by the validity checks\n";
+  if (filter->GetNumberOfCrossingTriangles() > 0)
+  {
+    std::cout << "  " << filter->GetNumberOfCrossingTriangles()
+              << " new triangles cut through the surface: their corners were locked and the swaps made again ("
+              << filter->GetNumberOfAttempts() << " attempts"
+              << (filter->GetKeptInput() ? "; they still crossed, so the mesh was kept unswapped" : "") << ")\n";
+  }
+  ImproveMeshType::Pointer out = filter->GetOutput();
+  out->DisconnectPipeline();
+  return out;
+}
+
+ImproveMeshType::Pointer
+SmoothLaplacian(ImproveMeshType * mesh, const ImproveOptions & o, const Arguments & args)
+{
+  auto filter = LaplacianFilterType::New();
+  filter->SetInput(mesh);
+  filter->SetWeights(o.weights);
+  filter->SetUpdateMode(o.update);
+  filter->SetMovementConstraint(o.constraint);
+  filter->SetNumberOfIterations(static_cast<int>(o.iterations));
+  filter->SetRelaxationFactor(args.GetDouble("relaxation", filter->GetRelaxationFactor()));
+  filter->SetVolumePreservation(args.Has("volume-preservation"));
+  ReportProgress(filter.GetPointer(), "laplacian smoothing");
+  filter->Update();
+  std::cout << "laplacian smoothing (" << OptionName(WeightNames(), o.weights) << ", "
+            << OptionName(ConstraintNames(), o.constraint) << ", " << OptionName(UpdateNames(), o.update)
+            << "): " << o.iterations << " iterations of " << filter->GetNumberOfMovableVertices()
+            << " movable vertices, " << filter->GetNumberOfMoves() << " moves, " << filter->GetNumberOfShortenedMoves()
+            << " shortened and " << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
+  PrintUndoneMoves(filter->GetNumberOfUndoneMoves());
+  ImproveMeshType::Pointer out = filter->GetOutput();
+  out->DisconnectPipeline();
+  return out;
+}
+
+ImproveMeshType::Pointer
+SmoothTaubin(ImproveMeshType * mesh, const ImproveOptions & o, const Arguments & args)
+{
+  auto filter = TaubinFilterType::New();
+  filter->SetInput(mesh);
+  filter->SetWeights(o.weights);
+  filter->SetUpdateMode(o.update);
+  filter->SetNumberOfIterations(static_cast<int>(o.iterations));
+  filter->SetLambda(args.GetDouble("lambda", filter->GetLambda()));
+  filter->SetMu(args.GetDouble("mu", filter->GetMu()));
+  filter->SetPassBandFrequency(args.GetDouble("pass-band", 0.0));
+  ReportProgress(filter.GetPointer(), "taubin smoothing");
+  filter->Update();
+  std::cout << "taubin smoothing (lambda " << filter->GetLambda() << ", mu " << filter->GetEffectiveMu() << ", "
+            << OptionName(WeightNames(), o.weights) << ", " << OptionName(UpdateNames(), o.update)
+            << "): " << o.iterations << " iterations of " << filter->GetNumberOfMovableVertices()
+            << " movable vertices, " << filter->GetNumberOfMoves() << " moves, " << filter->GetNumberOfShortenedMoves()
+            << " shortened and " << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
+  PrintUndoneMoves(filter->GetNumberOfUndoneMoves());
+  ImproveMeshType::Pointer out = filter->GetOutput();
+  out->DisconnectPipeline();
+  return out;
+}
+
+/** --report: the quality before and after, and the two side by side. */
+void
+PrintBeforeAndAfter(const MeasuredMesh & before, const MeasuredMesh & after)
+{
+  before.quality.Print(std::cout, before.name);
+  std::cout << '\n';
+  after.quality.Print(std::cout, after.name);
+  std::cout << '\n';
+  PrintComparison({ before, after }, std::cout);
+}
+
+int
+RunImprove(const Arguments & args)
+{
+  const ImproveOptions     o = ReadImproveOptions(args);
   const std::string &      inputPath = args.positional[0];
   const std::string &      outputPath = args.positional[1];
   Stopwatch                watch;
-  ImproveMeshType::Pointer mesh = ReadManifoldMesh(inputPath);
+  ImproveMeshType::Pointer mesh = ReadManifoldMesh(inputPath, "improve");
   std::cerr << "improve " << inputPath << ": " << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces()
             << " triangles\n";
   MeasuredMesh before;
   if (args.Has("report"))
   {
-    before = MeasureForImprove(mesh, "before: " + inputPath);
+    before = MeasureMesh(mesh, "before: " + inputPath);
   }
-
-  // Thesis section 4.2.4: an edge swap first, then smoothing, which converges faster
-  // on the regularised mesh.
-  if (swap)
+  if (o.swap)
   {
-    auto filter = itk::EdgeSwapQuadEdgeMeshFilter<ImproveMeshType>::New();
-    filter->SetInput(mesh);
-    filter->SetCriterion(criterion);
-    filter->SetMaximumNumberOfIterations(static_cast<int>(swapIterations));
-    filter->SetFeatureAngle(args.GetDouble("feature-angle", filter->GetFeatureAngle()));
-    filter->SetMinimumQAreaRatio(args.GetDouble("swap-quality", filter->GetMinimumQAreaRatio()));
-    ReportProgress(filter.GetPointer(), "edge swap");
-    filter->Update();
-    std::cout << "edge swap (" << args.Get("swap") << "): " << filter->GetNumberOfSwaps() << " swaps in "
-              << filter->GetNumberOfIterations() << " passes, " << filter->GetNumberOfRefusedSwaps()
-              << " improving swaps refused by the validity checks\n";
-    if (filter->GetNumberOfCrossingTriangles() > 0)
-    {
-      std::cout << "  " << filter->GetNumberOfCrossingTriangles()
-                << " new triangles cut through the surface: their corners were locked and the swaps made again ("
-                << filter->GetNumberOfAttempts() << " attempts"
-                << (filter->GetKeptInput() ? "; they still crossed, so the mesh was kept unswapped" : "") << ")\n";
-    }
-    mesh = filter->GetOutput();
-    mesh->DisconnectPipeline();
+    mesh = SwapEdges(mesh, o, args);
   }
-
-  if (smoothing == "laplacian")
+  if (o.smoothing == "laplacian")
   {
-    auto filter = itk::LaplacianSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
-    filter->SetInput(mesh);
-    filter->SetWeights(weights);
-    filter->SetUpdateMode(update);
-    filter->SetMovementConstraint(constraint);
-    filter->SetNumberOfIterations(static_cast<int>(iterations));
-    filter->SetRelaxationFactor(args.GetDouble("relaxation", filter->GetRelaxationFactor()));
-    filter->SetVolumePreservation(args.Has("volume-preservation"));
-    ReportProgress(filter.GetPointer(), "laplacian smoothing");
-    filter->Update();
-    std::cout << "laplacian smoothing (" << OptionName(WeightNames(), weights) << ", "
-              << OptionName(ConstraintNames(), constraint) << ", " << OptionName(UpdateNames(), update)
-              << "): " << iterations << " iterations of " << filter->GetNumberOfMovableVertices()
-              << " movable vertices, " << filter->GetNumberOfMoves() << " moves, "
-              << filter->GetNumberOfShortenedMoves() << " shortened and " << filter->GetNumberOfRejectedMoves()
-              << " rejected by the inversion guard\n";
-    PrintUndoneMoves(filter->GetNumberOfUndoneMoves());
-    mesh = filter->GetOutput();
-    mesh->DisconnectPipeline();
+    mesh = SmoothLaplacian(mesh, o, args);
   }
-  else if (smoothing == "taubin")
+  else if (o.smoothing == "taubin")
   {
-    auto filter = itk::TaubinSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
-    filter->SetInput(mesh);
-    filter->SetWeights(weights);
-    filter->SetUpdateMode(update);
-    filter->SetNumberOfIterations(static_cast<int>(iterations));
-    filter->SetLambda(args.GetDouble("lambda", filter->GetLambda()));
-    filter->SetMu(args.GetDouble("mu", filter->GetMu()));
-    filter->SetPassBandFrequency(args.GetDouble("pass-band", 0.0));
-    ReportProgress(filter.GetPointer(), "taubin smoothing");
-    filter->Update();
-    std::cout << "taubin smoothing (lambda " << filter->GetLambda() << ", mu " << filter->GetEffectiveMu() << ", "
-              << OptionName(WeightNames(), weights) << ", " << OptionName(UpdateNames(), update) << "): " << iterations
-              << " iterations of " << filter->GetNumberOfMovableVertices() << " movable vertices, "
-              << filter->GetNumberOfMoves() << " moves, " << filter->GetNumberOfShortenedMoves() << " shortened and "
-              << filter->GetNumberOfRejectedMoves() << " rejected by the inversion guard\n";
-    PrintUndoneMoves(filter->GetNumberOfUndoneMoves());
-    mesh = filter->GetOutput();
-    mesh->DisconnectPipeline();
+    mesh = SmoothTaubin(mesh, o, args);
   }
-
   WriteMeshFile(mesh.GetPointer(), outputPath);
   std::cerr << "  wrote " << outputPath << " in " << std::fixed << std::setprecision(2) << watch.Seconds() << " s\n"
             << std::defaultfloat;
   if (args.Has("report"))
   {
-    const MeasuredMesh after = MeasureForImprove(mesh, "after: " + outputPath);
-    before.quality.Print(std::cout, before.name);
-    std::cout << '\n';
-    after.quality.Print(std::cout, after.name);
-    std::cout << '\n';
-    PrintComparison({ before, after }, std::cout);
+    PrintBeforeAndAfter(before, MeasureMesh(mesh, "after: " + outputPath));
   }
   return 0;
 }
+} // namespace
 
-inline Command
+Command
 MakeImproveCommand()
 {
   // The filters' own defaults, for the help text.
-  const auto swapDefaults = itk::EdgeSwapQuadEdgeMeshFilter<ImproveMeshType>::New();
-  const auto laplacianDefaults = itk::LaplacianSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
-  const auto taubinDefaults = itk::TaubinSmoothingQuadEdgeMeshFilter<ImproveMeshType>::New();
+  const auto swapDefaults = SwapFilterType::New();
+  const auto laplacianDefaults = LaplacianFilterType::New();
+  const auto taubinDefaults = TaubinFilterType::New();
   Command    c;
   c.name = "improve";
   c.summary = "improve a mesh: edge swaps, then Laplacian or Taubin smoothing that never inverts triangles";
@@ -363,6 +381,5 @@ MakeImproveCommand()
   c.run = RunImprove;
   return c;
 }
-} // namespace MeshExtractionCLI
 
-#endif
+} // namespace MeshExtractionCLI

@@ -15,28 +15,23 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-#ifndef MeshExtractionExtractCommand_h
-#define MeshExtractionExtractCommand_h
+// meshextraction extract: a surface mesh from an image (or a phantom) with SurfaceNets.
 
-#include "MeshExtractionCommandHelpers.h"
-#include "MeshExtractionQualityCommand.h"
+#include "MeshExtractionCLI.h"
+
 #include "itkImplicitSurfaceImageSource.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
-#include <algorithm>
-#include <fstream>
-#include <iterator>
-#include <string>
-#include <utility>
+#include <iomanip>
+#include <iostream>
 
 namespace MeshExtractionCLI
 {
-// ------------------------------------------------------------------------------
-// extract
-// ------------------------------------------------------------------------------
+namespace
+{
 using SurfaceNetsEnums = itk::SurfaceNetsImageToMeshFilterEnums;
 // The tool only writes the mesh: itk::Mesh is faster to fill than QuadEdgeMesh.
-using ExtractMeshType = itk::Mesh<double, 3>;
+using ExtractMeshType = IOMeshType;
 
 /** The parts of the extract options that do not depend on the pixel type. The
  * filter's own settings start as the filter's defaults (ExtractDefaults), so that the
@@ -65,7 +60,7 @@ struct ExtractSettings
 
 /** The settings of a default-constructed SurfaceNetsImageToMeshFilter (the pixel type
  * does not change them). */
-inline ExtractSettings
+ExtractSettings
 ExtractDefaults()
 {
   const auto      filter = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>, ExtractMeshType>::New();
@@ -87,7 +82,7 @@ ExtractDefaults()
 }
 
 /** The names --triangulation takes, with the filter's setting each names. */
-inline const OptionNames<SurfaceNetsEnums::Triangulation> &
+const OptionNames<SurfaceNetsEnums::Triangulation> &
 TriangulationNames()
 {
   static const OptionNames<SurfaceNetsEnums::Triangulation> table = {
@@ -98,7 +93,7 @@ TriangulationNames()
   return table;
 }
 
-inline SurfaceNetsEnums::Relaxation
+SurfaceNetsEnums::Relaxation
 RelaxationFromName(const std::string & name)
 {
   if (name == "auto")
@@ -124,13 +119,13 @@ RelaxationFromName(const std::string & name)
   throw UsageError("--relaxation must be auto, none, sna, gradient or snert, got '" + name + "'");
 }
 
-template <typename TImage>
-ExtractMeshType::Pointer
-RunSurfaceNets(const TImage * image, const ExtractSettings & s)
+// ------------------------------------------------------------------------------
+// Running SurfaceNets
+// ------------------------------------------------------------------------------
+template <typename TFilter>
+void
+ConfigureFilter(TFilter * filter, const ExtractSettings & s)
 {
-  using FilterType = itk::SurfaceNetsImageToMeshFilter<TImage, ExtractMeshType>;
-  auto filter = FilterType::New();
-  filter->SetInput(image);
   filter->SetIsoValue(s.isoValue);
   filter->SetInsideIsAboveIsoValue(s.insideAbove);
   filter->SetClassifyByLabel(s.byLabel && s.labelImage.empty());
@@ -149,26 +144,28 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   {
     filter->SetNumberOfWorkUnits(s.threads);
   }
-  typename FilterType::LabelImageType::Pointer labels;
-  if (!s.labelImage.empty())
+}
+
+/** With --isotropic: whether, and to what spacing, the image is resampled. */
+template <typename TFilter, typename TImage>
+void
+PrintResampling(const TImage * image)
+{
+  if (const double spacing = TFilter::IsotropicResamplingSpacing(image))
   {
-    labels = ReadImageFile<typename FilterType::LabelImageType>(s.labelImage);
-    filter->SetLabelImage(labels);
+    std::cerr << "  resampling to cubic voxels of " << spacing << " mm (from " << image->GetSpacing() << ")\n";
   }
-  if (s.isotropic)
+  else
   {
-    if (const double spacing = FilterType::IsotropicResamplingSpacing(image))
-    {
-      std::cerr << "  resampling to cubic voxels of " << spacing << " mm (from " << image->GetSpacing() << ")\n";
-    }
-    else
-    {
-      std::cerr << "  the voxels are cubic already: not resampled\n";
-    }
+    std::cerr << "  the voxels are cubic already: not resampled\n";
   }
-  ReportProgress(filter.GetPointer(), "SurfaceNets");
-  Stopwatch watch;
-  filter->Update();
+}
+
+/** The line that sums up what the filter did. */
+template <typename TFilter>
+void
+PrintFilterSummary(const TFilter * filter, const ExtractSettings & s, const Stopwatch & watch)
+{
   std::cerr << "  " << filter->GetNumberOfNodes() << " nodes (" << filter->GetNumberOfSplitCells() << " split cells), "
             << filter->GetNumberOfIterations() << " relaxation iterations (last largest move "
             << filter->GetLastMaximumRelocation() << " voxel), " << filter->GetNumberOfNodesMovedBack()
@@ -179,13 +176,37 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
               << " rounds";
   }
   std::cerr << ", " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n" << std::defaultfloat;
+}
+
+template <typename TImage>
+ExtractMeshType::Pointer
+RunSurfaceNets(const TImage * image, const ExtractSettings & s)
+{
+  using FilterType = itk::SurfaceNetsImageToMeshFilter<TImage, ExtractMeshType>;
+  auto filter = FilterType::New();
+  filter->SetInput(image);
+  ConfigureFilter(filter.GetPointer(), s);
+  typename FilterType::LabelImageType::Pointer labels;
+  if (!s.labelImage.empty())
+  {
+    labels = ReadImageFile<typename FilterType::LabelImageType>(s.labelImage);
+    filter->SetLabelImage(labels);
+  }
+  if (s.isotropic)
+  {
+    PrintResampling<FilterType>(image);
+  }
+  ReportProgress(filter.GetPointer(), "SurfaceNets");
+  Stopwatch watch;
+  filter->Update();
+  PrintFilterSummary(filter.GetPointer(), s, watch);
   ExtractMeshType::Pointer mesh = filter->GetOutput();
   mesh->DisconnectPipeline();
   return mesh;
 }
 
 /** Reads INPUT with its own pixel type and extracts. */
-inline ExtractMeshType::Pointer
+ExtractMeshType::Pointer
 ExtractFromFile(const std::string & path, const ExtractSettings & s)
 {
   auto io = ReadImageInformation(path);
@@ -223,16 +244,48 @@ ExtractFromFile(const std::string & path, const ExtractSettings & s)
   }
 }
 
-inline int
-RunExtract(const Arguments & args)
+/** Extracts from --phantom (the iso-value its image needs, unless --iso is given); the
+ * phantom's exact surface goes to `exact`. */
+ExtractMeshType::Pointer
+ExtractFromPhantom(const Arguments & args, ExtractSettings & s, itk::ImplicitSurfaceFunction::Pointer & exact)
 {
-  ExtractSettings s = ExtractDefaults();
-  const bool      fromPhantom = args.Has("phantom");
-  if (fromPhantom == (args.positional.size() == 2))
+  const ME::PhantomShape shape = ShapeFromName(args.Get("phantom"));
+  const ME::PhantomGrid  grid = GridFromArguments(shape, args);
+  const auto             parameters = ME::DefaultPhantomImageParameters(shape);
+  if (!args.Has("iso"))
   {
-    throw UsageError(fromPhantom ? "with --phantom give only OUTPUT" : "'extract' expects INPUT and OUTPUT");
+    // Distance maps: the zero level, inside negative; blurred steps: half-way.
+    const bool step = parameters.mode == itk::MeshExtractionEnums::PhantomImage::BlurredStep;
+    s.isoValue = step ? 0.5 * (parameters.insideValue + parameters.outsideValue) : 0.0;
+    s.insideAbove = step;
   }
-  const std::string output = args.positional.back();
+  std::cerr << "extract: phantom " << ME::PhantomShapeName(shape) << " (" << grid.size << " voxels)\n";
+  auto source = ME::MakePhantomImageSource<itk::Image<float, 3>>(shape, grid, parameters);
+  source->Update();
+  ExtractMeshType::Pointer mesh = RunSurfaceNets(source->GetOutput(), s);
+  exact = ME::MakePhantomSurface(shape, grid);
+  return mesh;
+}
+
+// ------------------------------------------------------------------------------
+// Options
+// ------------------------------------------------------------------------------
+/** A count option that must not be negative. */
+unsigned int
+NonNegative(const Arguments & args, const std::string & name, unsigned int fallback)
+{
+  const long value = args.GetInteger(name, static_cast<long>(fallback));
+  if (value < 0)
+  {
+    throw UsageError("--" + name + " must be >= 0");
+  }
+  return static_cast<unsigned int>(value);
+}
+
+/** What the object is: --iso and --inside, --label, --labels. */
+void
+ReadObjectOptions(const Arguments & args, bool fromPhantom, ExtractSettings & s)
+{
   s.byLabel = args.Has("label");
   s.label = args.GetDouble("label", s.label);
   s.labelImage = args.Get("labels");
@@ -251,16 +304,17 @@ RunExtract(const Arguments & args)
     throw UsageError("--inside must be above or below, got '" + inside + "'");
   }
   s.insideAbove = inside == "above";
+}
+
+/** How the net is relaxed and triangulated, the high-quality mode, the threads. */
+void
+ReadMeshingOptions(const Arguments & args, ExtractSettings & s)
+{
   if (args.Has("relaxation"))
   {
     s.relaxation = RelaxationFromName(args.Get("relaxation"));
   }
-  const long iterations = args.GetInteger("iterations", static_cast<long>(s.iterations));
-  if (iterations < 0)
-  {
-    throw UsageError("--iterations must be >= 0");
-  }
-  s.iterations = static_cast<unsigned int>(iterations);
+  s.iterations = NonNegative(args, "iterations", s.iterations);
   s.triangulation = ChooseOption(args, "triangulation", TriangulationNames(), s.triangulation);
   if (args.Has("sigma"))
   {
@@ -273,41 +327,51 @@ RunExtract(const Arguments & args)
     throw UsageError("--quality must be standard or high, got '" + qualityMode + "'");
   }
   s.highQuality = qualityMode == "high";
-  const long rounds = args.GetInteger("rounds", static_cast<long>(s.rounds));
-  if (rounds < 0)
-  {
-    throw UsageError("--rounds must be >= 0");
-  }
-  s.rounds = static_cast<unsigned int>(rounds);
+  s.rounds = NonNegative(args, "rounds", s.rounds);
   s.convergedSwaps = args.GetDouble("converged-swaps", s.convergedSwaps); // the filter checks the range
   s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
   s.isotropic = s.isotropic || args.Has("isotropic");
-  const long threads = args.GetInteger("threads", 0);
-  if (threads < 0)
+  s.threads = NonNegative(args, "threads", 0);
+}
+
+/** --report and --report-json: the quality (and distances to a phantom's exact surface). */
+void
+ReportOnMesh(const Arguments &                    args,
+             const ExtractMeshType *              mesh,
+             const itk::ImplicitSurfaceFunction * exact,
+             const std::string &                  output)
+{
+  MeasureSettings settings;
+  settings.referenceSurface = exact;
+  const MeasuredMesh measured = MeasureMesh(mesh, output, settings);
+  if (args.Has("report"))
   {
-    throw UsageError("--threads must be >= 0");
+    PrintMeasuredMesh(measured, output, std::cout);
   }
-  s.threads = static_cast<unsigned int>(threads);
+  if (args.Has("report-json"))
+  {
+    WriteJSON({ measured }, args.Get("report-json"));
+  }
+}
+
+int
+RunExtract(const Arguments & args)
+{
+  ExtractSettings s = ExtractDefaults();
+  const bool      fromPhantom = args.Has("phantom");
+  if (fromPhantom == (args.positional.size() == 2))
+  {
+    throw UsageError(fromPhantom ? "with --phantom give only OUTPUT" : "'extract' expects INPUT and OUTPUT");
+  }
+  const std::string output = args.positional.back();
+  ReadObjectOptions(args, fromPhantom, s);
+  ReadMeshingOptions(args, s);
 
   ExtractMeshType::Pointer              mesh;
   itk::ImplicitSurfaceFunction::Pointer exact;
   if (fromPhantom)
   {
-    const ME::PhantomShape shape = ShapeFromName(args.Get("phantom"));
-    const ME::PhantomGrid  grid = GridFromArguments(shape, args);
-    const auto             parameters = ME::DefaultPhantomImageParameters(shape);
-    if (!args.Has("iso"))
-    {
-      // Distance maps: the zero level, inside negative; blurred steps: half-way.
-      const bool step = parameters.mode == itk::MeshExtractionEnums::PhantomImage::BlurredStep;
-      s.isoValue = step ? 0.5 * (parameters.insideValue + parameters.outsideValue) : 0.0;
-      s.insideAbove = step;
-    }
-    std::cerr << "extract: phantom " << ME::PhantomShapeName(shape) << " (" << grid.size << " voxels)\n";
-    auto source = ME::MakePhantomImageSource<itk::Image<float, 3>>(shape, grid, parameters);
-    source->Update();
-    mesh = RunSurfaceNets(source->GetOutput(), s);
-    exact = ME::MakePhantomSurface(shape, grid);
+    mesh = ExtractFromPhantom(args, s, exact);
   }
   else
   {
@@ -317,41 +381,15 @@ RunExtract(const Arguments & args)
   WriteMeshFile(mesh.GetPointer(), output);
   std::cerr << "  wrote " << output << " (" << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfCells()
             << " faces)\n";
-
   if (args.Has("report") || args.Has("report-json"))
   {
-    auto quality = itk::TriangleMeshQualityCalculator<ExtractMeshType>::New();
-    quality->SetMesh(mesh);
-    quality->Compute();
-    MeasuredMesh measured;
-    measured.name = output;
-    measured.quality = quality->GetReport();
-    if (exact)
-    {
-      auto distance = itk::MeshSurfaceDistanceCalculator<ExtractMeshType>::New();
-      distance->SetMesh(mesh);
-      distance->SetReferenceSurface(exact);
-      distance->Compute();
-      measured.hasDistance = true;
-      measured.distance = distance->GetReport();
-    }
-    if (args.Has("report"))
-    {
-      measured.quality.Print(std::cout, output);
-      if (measured.hasDistance)
-      {
-        measured.distance.Print(std::cout);
-      }
-    }
-    if (args.Has("report-json"))
-    {
-      WriteJSON({ measured }, args.Get("report-json"));
-    }
+    ReportOnMesh(args, mesh, exact, output);
   }
   return 0;
 }
+} // namespace
 
-inline Command
+Command
 MakeExtractCommand()
 {
   const ExtractSettings defaults = ExtractDefaults();
@@ -414,5 +452,3 @@ MakeExtractCommand()
 }
 
 } // namespace MeshExtractionCLI
-
-#endif

@@ -15,30 +15,29 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-#ifndef MeshExtractionRefineCommand_h
-#define MeshExtractionRefineCommand_h
+// meshextraction refine: scale-space edge refinement of a rough mesh, the ED/ES/S
+// protocol of thesis chapter 4.
 
-#include "MeshExtractionCommandHelpers.h"
-#include "MeshExtractionQualityCommand.h"
+#include "MeshExtractionCLI.h"
+
 #include "itkMeshExtractionGeodesicSphere.h"
-#include "itkMeshSurfaceDistanceCalculator.h"
-#include "itkQuadEdgeMesh.h"
 #include "itkScaleSpaceEdgeMeshRefinementFilter.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
-#include "itkTriangleMeshQualityCalculator.h"
 
 #include <algorithm>
 #include <fstream>
+#include <iomanip>
+#include <iostream>
 #include <limits>
 
 namespace MeshExtractionCLI
 {
-// ------------------------------------------------------------------------------
-// refine
-// ------------------------------------------------------------------------------
-using RefineMeshType = itk::QuadEdgeMesh<double, 3>;
+namespace
+{
+using RefineMeshType = QuadEdgeMeshType;
 using RefineImageType = itk::Image<float, 3>;
 using RefineFilterType = itk::ScaleSpaceEdgeMeshRefinementFilter<RefineMeshType, RefineImageType>;
+using Direction = itk::MeshExtractionEnums::EdgeSearchDirection;
 
 /** The defaults of the options that build the initial mesh (the command's own, not
  * a filter's; the help prints these). */
@@ -47,34 +46,33 @@ constexpr char RefineDefaultInside[] = "above";
 constexpr char RefineDefaultRelaxation[] = "none";
 
 /** The name --search gives the filter's search direction. */
-inline const char *
-SearchDirectionName(itk::MeshExtractionEnums::EdgeSearchDirection direction)
+const char *
+SearchDirectionName(Direction direction)
 {
-  return direction == itk::MeshExtractionEnums::EdgeSearchDirection::ImageGradient ? "gradient" : "normal";
+  return direction == Direction::ImageGradient ? "gradient" : "normal";
 }
 
-/** A triangle QuadEdgeMesh from any mesh file ITK reads (quadrilaterals split); a
- * mesh the quad-edge structure cannot hold is refused with a clear error. */
-inline RefineMeshType::Pointer
-ReadRefineMesh(const std::string & path)
+// ------------------------------------------------------------------------------
+// The initial mesh
+// ------------------------------------------------------------------------------
+
+/** The physical centre of the image. */
+ME::Vec3
+ImageCentre(const RefineImageType * image)
 {
-  const IOMeshType::Pointer     mesh = ReadMeshFile(path);
-  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
-  auto                          out = RefineMeshType::New();
-  try
+  const auto                      region = image->GetLargestPossibleRegion();
+  itk::ContinuousIndex<double, 3> middle;
+  RefineImageType::PointType      p;
+  for (unsigned int d = 0; d < 3; ++d)
   {
-    ME::FillMesh(triangles, *out);
+    middle[d] = static_cast<double>(region.GetIndex(d)) + 0.5 * (static_cast<double>(region.GetSize(d)) - 1.0);
   }
-  catch (const itk::ExceptionObject & e)
-  {
-    itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which "
-                                 << "'refine' needs: " << Describe(e));
-  }
-  return out;
+  image->TransformContinuousIndexToPhysicalPoint(middle, p);
+  return ME::MakeVec3(p[0], p[1], p[2]);
 }
 
 /** --initial sphere: a geodesic sphere (--subdivisions, --radius, --center). */
-inline RefineMeshType::Pointer
+RefineMeshType::Pointer
 InitialSphereMesh(const Arguments & args, const RefineImageType * image)
 {
   if (!args.Has("radius"))
@@ -99,16 +97,7 @@ InitialSphereMesh(const Arguments & args, const RefineImageType * image)
   }
   else
   {
-    // The physical centre of the image.
-    const auto                      region = image->GetLargestPossibleRegion();
-    itk::ContinuousIndex<double, 3> middle;
-    RefineImageType::PointType      p;
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      middle[d] = static_cast<double>(region.GetIndex(d)) + 0.5 * (static_cast<double>(region.GetSize(d)) - 1.0);
-    }
-    image->TransformContinuousIndexToPhysicalPoint(middle, p);
-    center = ME::MakeVec3(p[0], p[1], p[2]);
+    center = ImageCentre(image);
   }
   auto mesh = RefineMeshType::New();
   ME::FillMesh(ME::MakeGeodesicSphere(static_cast<unsigned int>(subdivisions), center, radius), *mesh);
@@ -119,7 +108,7 @@ InitialSphereMesh(const Arguments & args, const RefineImageType * image)
 
 /** --initial surfacenets: SurfaceNets of the threshold --iso (no relaxation, or
  * --relaxation sna). */
-inline RefineMeshType::Pointer
+RefineMeshType::Pointer
 InitialSurfaceNetsMesh(const Arguments & args, const RefineImageType * image)
 {
   if (!args.Has("iso"))
@@ -154,10 +143,28 @@ InitialSurfaceNetsMesh(const Arguments & args, const RefineImageType * image)
   return mesh;
 }
 
+/** The initial mesh: built (--initial) or read (MESH). */
+RefineMeshType::Pointer
+InitialMesh(const Arguments & args, const std::string & initial, const RefineImageType * image)
+{
+  if (initial == "sphere")
+  {
+    return InitialSphereMesh(args, image);
+  }
+  if (initial == "surfacenets")
+  {
+    return InitialSurfaceNetsMesh(args, image);
+  }
+  RefineMeshType::Pointer mesh = ReadManifoldMesh(args.positional[1], "refine");
+  std::cerr << "  initial mesh: " << args.positional[1] << ", " << mesh->GetNumberOfPoints() << " points, "
+            << mesh->GetNumberOfFaces() << " triangles\n";
+  return mesh;
+}
+
 /** The largest connected component (by number of triangles) of a triangle mesh:
  * threshold meshes of real images carry small islands whose vertices smoothing moves
  * far, which would end every cycle after one smoothing step. */
-inline RefineMeshType::Pointer
+RefineMeshType::Pointer
 LargestComponent(const RefineMeshType * mesh)
 {
   const ME::IndexedTriangleMesh in = ME::MakeIndexedTriangleMesh(*mesh);
@@ -196,45 +203,14 @@ LargestComponent(const RefineMeshType * mesh)
   return result;
 }
 
-inline MeasuredMesh
-MeasureForRefine(const RefineMeshType * mesh, const std::string & name, const itk::ImplicitSurfaceFunction * reference)
-{
-  auto calculator = itk::TriangleMeshQualityCalculator<RefineMeshType>::New();
-  calculator->SetMesh(mesh);
-  calculator->Compute();
-  MeasuredMesh m;
-  m.name = name;
-  m.quality = calculator->GetReport();
-  if (reference != nullptr)
-  {
-    auto distance = itk::MeshSurfaceDistanceCalculator<RefineMeshType>::New();
-    distance->SetMesh(mesh);
-    distance->SetReferenceSurface(reference);
-    distance->Compute();
-    m.hasDistance = true;
-    m.distance = distance->GetReport();
-  }
-  return m;
-}
+// ------------------------------------------------------------------------------
+// Options
+// ------------------------------------------------------------------------------
 
-inline int
-RunRefine(const Arguments & args)
+/** A UsageError for options of one way to build the initial mesh given with another. */
+void
+CheckInitialMeshOptions(const Arguments & args, const std::string & initial)
 {
-  using Direction = itk::MeshExtractionEnums::EdgeSearchDirection;
-  const bool hasInitial = args.Has("initial");
-  if (hasInitial && args.positional.size() != 2)
-  {
-    throw UsageError("with --initial give IMAGE and OUT only");
-  }
-  if (!hasInitial && args.positional.size() != 3)
-  {
-    throw UsageError("'refine' expects IMAGE MESH OUT (or IMAGE OUT with --initial sphere|surfacenets)");
-  }
-  const std::string initial = args.Get("initial");
-  if (hasInitial && initial != "sphere" && initial != "surfacenets")
-  {
-    throw UsageError("--initial must be sphere or surfacenets, got '" + initial + "'");
-  }
   const char * sphereOptions[] = { "radius", "center", "subdivisions" };
   for (const char * option : sphereOptions)
   {
@@ -259,113 +235,135 @@ RunRefine(const Arguments & args)
   {
     throw UsageError("--initial surfacenets needs --iso V (the threshold of the rough segmentation)");
   }
+}
+
+/** --initial (empty: MESH is read), after checking the positional arguments and the
+ * options that go with it. */
+std::string
+ReadInitialChoice(const Arguments & args)
+{
+  const bool hasInitial = args.Has("initial");
+  if (hasInitial && args.positional.size() != 2)
+  {
+    throw UsageError("with --initial give IMAGE and OUT only");
+  }
+  if (!hasInitial && args.positional.size() != 3)
+  {
+    throw UsageError("'refine' expects IMAGE MESH OUT (or IMAGE OUT with --initial sphere|surfacenets)");
+  }
+  const std::string initial = args.Get("initial");
+  if (hasInitial && initial != "sphere" && initial != "surfacenets")
+  {
+    throw UsageError("--initial must be sphere or surfacenets, got '" + initial + "'");
+  }
+  CheckInitialMeshOptions(args, initial);
   if (!args.Has("max-deviation"))
   {
     throw UsageError("give the largest distance between the initial mesh and the object's edge: --max-deviation MM");
   }
-  // Options not given keep the filter's defaults.
-  auto         filter = RefineFilterType::New();
-  const double deviation = args.GetDouble("max-deviation", 0.0);
-  const double target = args.GetDouble("target-quality", filter->GetTargetQuality());
-  const long   cycles = args.GetInteger("cycles", filter->GetMaximumNumberOfCycles());
-  const long   smoothingSteps = args.GetInteger("smoothing-steps", filter->GetMaximumNumberOfSmoothingSteps());
-  const long   perOctave = args.GetInteger("scales-per-octave", filter->GetNumberOfScalesPerOctave());
-  const long   threads = args.GetInteger("threads", 0);
-  if (cycles < 0 || smoothingSteps < 1 || perOctave < 1 || threads < 0)
+  return initial;
+}
+
+/** The refinement's settings; the options not given keep the filter's defaults. */
+struct RefineSettings
+{
+  double      deviation{ 0.0 };
+  double      target{ 0.0 };
+  long        cycles{ 0 };
+  long        smoothingSteps{ 0 };
+  long        perOctave{ 0 };
+  long        threads{ 0 };
+  std::string search;
+};
+
+RefineSettings
+ReadRefineSettings(const Arguments & args, const RefineFilterType * defaults)
+{
+  RefineSettings s;
+  s.deviation = args.GetDouble("max-deviation", 0.0);
+  s.target = args.GetDouble("target-quality", defaults->GetTargetQuality());
+  s.cycles = args.GetInteger("cycles", defaults->GetMaximumNumberOfCycles());
+  s.smoothingSteps = args.GetInteger("smoothing-steps", defaults->GetMaximumNumberOfSmoothingSteps());
+  s.perOctave = args.GetInteger("scales-per-octave", defaults->GetNumberOfScalesPerOctave());
+  s.threads = args.GetInteger("threads", 0);
+  if (s.cycles < 0 || s.smoothingSteps < 1 || s.perOctave < 1 || s.threads < 0)
   {
     throw UsageError("--cycles must be >= 0, --smoothing-steps and --scales-per-octave >= 1, --threads >= 0");
   }
-  const std::string search = args.Get("search", SearchDirectionName(filter->GetSearchDirection()));
-  if (search != "gradient" && search != "normal")
+  s.search = args.Get("search", SearchDirectionName(defaults->GetSearchDirection()));
+  if (s.search != "gradient" && s.search != "normal")
   {
-    throw UsageError("--search must be gradient or normal, got '" + search + "'");
+    throw UsageError("--search must be gradient or normal, got '" + s.search + "'");
   }
+  return s;
+}
 
-  const std::string & imagePath = args.positional[0];
-  const std::string & outputPath = args.positional.back();
-  Stopwatch           watch;
-  std::cerr << "refine: " << imagePath << '\n';
-  const RefineImageType::Pointer image = ReadImageFile<RefineImageType>(imagePath);
-  std::cerr << "  image " << image->GetLargestPossibleRegion().GetSize() << " voxels of " << image->GetSpacing()
-            << " mm\n";
-  RefineMeshType::Pointer mesh;
-  if (initial == "sphere")
+/** --phantom: the phantom's exact surface on IMAGE's grid, and its radius if it is a
+ * sphere (NaN otherwise). */
+itk::ImplicitSurfaceFunction::Pointer
+PhantomReference(const Arguments & args, const std::string & imagePath, double & radius)
+{
+  radius = std::numeric_limits<double>::quiet_NaN();
+  if (!args.Has("phantom"))
   {
-    mesh = InitialSphereMesh(args, image);
+    return nullptr;
   }
-  else if (initial == "surfacenets")
+  const ME::PhantomShape                shape = ShapeFromName(args.Get("phantom"));
+  itk::ImplicitSurfaceFunction::Pointer reference = ME::MakePhantomSurface(shape, ReadImageGrid(imagePath));
+  if (const auto * sphere = dynamic_cast<const itk::SphereImplicitSurface *>(reference.GetPointer()))
   {
-    mesh = InitialSurfaceNetsMesh(args, image);
+    radius = sphere->GetRadius();
   }
-  else
-  {
-    mesh = ReadRefineMesh(args.positional[1]);
-    std::cerr << "  initial mesh: " << args.positional[1] << ", " << mesh->GetNumberOfPoints() << " points, "
-              << mesh->GetNumberOfFaces() << " triangles\n";
-  }
+  return reference;
+}
 
-  if (args.Has("largest-component"))
-  {
-    mesh = LargestComponent(mesh);
-  }
-
-  itk::ImplicitSurfaceFunction::Pointer reference;
-  double                                radius = std::numeric_limits<double>::quiet_NaN();
-  if (args.Has("phantom"))
-  {
-    const ME::PhantomShape shape = ShapeFromName(args.Get("phantom"));
-    reference = ME::MakePhantomSurface(shape, ReadImageGrid(imagePath));
-    if (const auto * sphere = dynamic_cast<const itk::SphereImplicitSurface *>(reference.GetPointer()))
-    {
-      radius = sphere->GetRadius();
-    }
-  }
-  MeasuredMesh before;
-  if (args.Has("report"))
-  {
-    before = MeasureForRefine(mesh, "initial", reference);
-  }
-
-  filter->SetInput(mesh);
-  filter->SetInputImage(image);
-  filter->SetMaximumDeviation(deviation);
-  filter->SetTargetQuality(target);
-  filter->SetMaximumNumberOfCycles(static_cast<unsigned int>(cycles));
-  filter->SetMaximumNumberOfSmoothingSteps(static_cast<unsigned int>(smoothingSteps));
-  filter->SetNumberOfScalesPerOctave(static_cast<unsigned int>(perOctave));
+// ------------------------------------------------------------------------------
+// The refinement
+// ------------------------------------------------------------------------------
+void
+ConfigureRefinement(RefineFilterType *                   filter,
+                    const RefineSettings &               s,
+                    const Arguments &                    args,
+                    const itk::ImplicitSurfaceFunction * reference)
+{
+  filter->SetMaximumDeviation(s.deviation);
+  filter->SetTargetQuality(s.target);
+  filter->SetMaximumNumberOfCycles(static_cast<unsigned int>(s.cycles));
+  filter->SetMaximumNumberOfSmoothingSteps(static_cast<unsigned int>(s.smoothingSteps));
+  filter->SetNumberOfScalesPerOctave(static_cast<unsigned int>(s.perOctave));
   filter->SetMinimumScale(args.GetDouble("minimum-scale", filter->GetMinimumScale()));
-  filter->SetSearchDirection(search == "gradient" ? Direction::ImageGradient : Direction::VertexNormal);
+  filter->SetSearchDirection(s.search == "gradient" ? Direction::ImageGradient : Direction::VertexNormal);
   filter->SetSubSampleRefinement(!args.Has("thesis-detector"));
   filter->SetComputeInaccuracy(!args.Has("no-inaccuracy"));
   filter->SetReferenceSurface(reference);
-  if (threads > 0)
+  if (s.threads > 0)
   {
-    filter->SetNumberOfWorkUnits(static_cast<unsigned int>(threads));
+    filter->SetNumberOfWorkUnits(static_cast<unsigned int>(s.threads));
   }
-  ReportProgress(filter.GetPointer(), "refine");
-  Stopwatch refineWatch;
-  filter->Update();
-  const double            refineSeconds = refineWatch.Seconds();
-  RefineMeshType::Pointer output = filter->GetOutput();
-  output->DisconnectPipeline();
+}
 
+/** The scales, the step table (thesis Table 4.1) and the totals. */
+void
+PrintRefinement(const RefineFilterType * filter,
+                const RefineSettings &   s,
+                const RefineImageType *  image,
+                double                   radius,
+                double                   refineSeconds)
+{
   const auto & steps = filter->GetSteps();
-  std::cout << "scale-space refinement (thesis 4.2.4): maximum deviation " << deviation << " mm, target quality "
-            << target << ", scales "
-            << ME::ScaleSpaceScales(deviation,
-                                    ME::ResolveMinimumScale(image->GetSpacing(), filter->GetMinimumScale()),
-                                    static_cast<unsigned int>(perOctave))
-                 .size()
-            << " (" << deviation << " .. " << ME::ResolveMinimumScale(image->GetSpacing(), filter->GetMinimumScale())
-            << " mm)\n";
+  const double minimumScale = ME::ResolveMinimumScale(image->GetSpacing(), filter->GetMinimumScale());
+  std::cout << "scale-space refinement (thesis 4.2.4): maximum deviation " << s.deviation << " mm, target quality "
+            << s.target << ", scales "
+            << ME::ScaleSpaceScales(s.deviation, minimumScale, static_cast<unsigned int>(s.perOctave)).size() << " ("
+            << s.deviation << " .. " << minimumScale << " mm)\n";
   filter->PrintSteps(std::cout, radius);
   double      edgeDetectionSeconds = 0.0;
   std::size_t edgeDetections = 0;
-  for (const auto & s : steps)
+  for (const auto & step : steps)
   {
-    if (s.operation == itk::MeshExtractionEnums::RefinementOperation::EdgeDetection)
+    if (step.operation == itk::MeshExtractionEnums::RefinementOperation::EdgeDetection)
     {
-      edgeDetectionSeconds += s.seconds;
+      edgeDetectionSeconds += step.seconds;
       ++edgeDetections;
     }
   }
@@ -375,14 +373,80 @@ RunRefine(const Arguments & args)
             << (steps.size() > 1 ? steps[1].seconds : 0.0) << " s with the scale space), " << refineSeconds
             << " s in all\n"
             << std::defaultfloat;
+}
+
+/** --csv: the step table. */
+void
+WriteStepsCSV(const RefineFilterType * filter, const std::string & path)
+{
+  std::ofstream out(path);
+  if (!out)
+  {
+    itkGenericExceptionMacro("cannot write '" << path << "'");
+  }
+  ME::WriteScaleSpaceRefinementCSV(out, filter->GetSteps());
+}
+
+/** --report: the quality (and phantom distances) before and after, side by side. */
+void
+PrintBeforeAndAfter(const MeasuredMesh & before, const MeasuredMesh & after, const std::string & outputPath)
+{
+  PrintMeasuredMesh(before, "before: initial mesh", std::cout);
+  std::cout << '\n';
+  PrintMeasuredMesh(after, "after: " + outputPath, std::cout);
+  std::cout << '\n';
+  PrintComparison({ before, after }, std::cout);
+}
+
+/** Reads IMAGE. */
+RefineImageType::Pointer
+ReadRefineImage(const std::string & imagePath)
+{
+  std::cerr << "refine: " << imagePath << '\n';
+  RefineImageType::Pointer image = ReadImageFile<RefineImageType>(imagePath);
+  std::cerr << "  image " << image->GetLargestPossibleRegion().GetSize() << " voxels of " << image->GetSpacing()
+            << " mm\n";
+  return image;
+}
+
+int
+RunRefine(const Arguments & args)
+{
+  const std::string    initial = ReadInitialChoice(args);
+  auto                 filter = RefineFilterType::New();
+  const RefineSettings s = ReadRefineSettings(args, filter);
+
+  const std::string &            imagePath = args.positional[0];
+  const std::string &            outputPath = args.positional.back();
+  Stopwatch                      watch;
+  const RefineImageType::Pointer image = ReadRefineImage(imagePath);
+  RefineMeshType::Pointer        mesh = InitialMesh(args, initial, image);
+  if (args.Has("largest-component"))
+  {
+    mesh = LargestComponent(mesh);
+  }
+  double                                      radius;
+  const itk::ImplicitSurfaceFunction::Pointer reference = PhantomReference(args, imagePath, radius);
+  MeasuredMesh                                before;
+  if (args.Has("report"))
+  {
+    before = MeasureMesh(mesh, "initial", reference);
+  }
+
+  filter->SetInput(mesh);
+  filter->SetInputImage(image);
+  ConfigureRefinement(filter, s, args, reference);
+  ReportProgress(filter.GetPointer(), "refine");
+  Stopwatch refineWatch;
+  filter->Update();
+  const double            refineSeconds = refineWatch.Seconds();
+  RefineMeshType::Pointer output = filter->GetOutput();
+  output->DisconnectPipeline();
+
+  PrintRefinement(filter, s, image, radius, refineSeconds);
   if (args.Has("csv"))
   {
-    std::ofstream out(args.Get("csv"));
-    if (!out)
-    {
-      itkGenericExceptionMacro("cannot write '" << args.Get("csv") << "'");
-    }
-    ME::WriteScaleSpaceRefinementCSV(out, steps);
+    WriteStepsCSV(filter, args.Get("csv"));
   }
   WriteMeshFile(output.GetPointer(), outputPath);
   std::cerr << "  wrote " << outputPath << " (" << output->GetNumberOfPoints() << " points, "
@@ -391,25 +455,13 @@ RunRefine(const Arguments & args)
             << std::defaultfloat;
   if (args.Has("report"))
   {
-    const MeasuredMesh after = MeasureForRefine(output, outputPath, reference);
-    before.quality.Print(std::cout, "before: initial mesh");
-    if (before.hasDistance)
-    {
-      before.distance.Print(std::cout);
-    }
-    std::cout << '\n';
-    after.quality.Print(std::cout, "after: " + outputPath);
-    if (after.hasDistance)
-    {
-      after.distance.Print(std::cout);
-    }
-    std::cout << '\n';
-    PrintComparison({ before, after }, std::cout);
+    PrintBeforeAndAfter(before, MeasureMesh(output, outputPath, reference), outputPath);
   }
   return 0;
 }
+} // namespace
 
-inline Command
+Command
 MakeRefineCommand()
 {
   Command c;
@@ -466,6 +518,5 @@ MakeRefineCommand()
   c.run = RunRefine;
   return c;
 }
-} // namespace MeshExtractionCLI
 
-#endif
+} // namespace MeshExtractionCLI

@@ -15,14 +15,10 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-#ifndef MeshExtractionIO_h
-#define MeshExtractionIO_h
-
 // Reading and writing images and meshes for the meshextraction tool, with errors
 // that name the file and the problem.
 
-#include "itkMeshExtractionIndexedTriangleMesh.h"
-#include "itkMeshExtractionPhantoms.h"
+#include "MeshExtractionCLI.h"
 
 #include "itkGDCMImageIO.h"
 #include "itkGDCMSeriesFileNames.h"
@@ -30,24 +26,21 @@
 #include "itkImageFileWriter.h"
 #include "itkImageIOFactory.h"
 #include "itkImageSeriesReader.h"
-#include "itkMesh.h"
 #include "itkMeshFileReader.h"
 #include "itkMeshFileWriter.h"
 #include "itksys/SystemTools.hxx"
 
-#include <string>
-
 namespace MeshExtractionCLI
 {
-using IOMeshType = itk::Mesh<double, 3>;
-
-inline bool
+namespace
+{
+bool
 IsDirectory(const std::string & path)
 {
   return itksys::SystemTools::FileIsDirectory(path);
 }
 
-inline void
+void
 RequireReadable(const std::string & path)
 {
   if (!itksys::SystemTools::FileExists(path))
@@ -57,7 +50,7 @@ RequireReadable(const std::string & path)
 }
 
 /** The files of the first DICOM series in a directory, in slice order. */
-inline std::vector<std::string>
+std::vector<std::string>
 DicomSeriesFiles(const std::string & directory)
 {
   auto names = itk::GDCMSeriesFileNames::New();
@@ -71,7 +64,23 @@ DicomSeriesFiles(const std::string & directory)
   return names->GetFileNames(series.front());
 }
 
-/** Reads a 3-D image from a file (any format ITK reads) or a DICOM series directory. */
+/** The grid of an image. */
+template <typename TImage>
+ME::PhantomGrid
+GridOf(const TImage * image)
+{
+  ME::PhantomGrid grid;
+  grid.size = image->GetLargestPossibleRegion().GetSize();
+  grid.spacing = image->GetSpacing();
+  grid.origin = image->GetOrigin();
+  grid.direction = image->GetDirection();
+  return grid;
+}
+} // namespace
+
+// ------------------------------------------------------------------------------
+// Images
+// ------------------------------------------------------------------------------
 template <typename TImage>
 typename TImage::Pointer
 ReadImageFile(const std::string & path)
@@ -99,8 +108,7 @@ ReadImageFile(const std::string & path)
   }
 }
 
-/** Header information of an image file or DICOM directory: component type and dimension. */
-inline itk::ImageIOBase::Pointer
+itk::ImageIOBase::Pointer
 ReadImageInformation(const std::string & path)
 {
   RequireReadable(path);
@@ -122,21 +130,15 @@ ReadImageInformation(const std::string & path)
   return io;
 }
 
-/** The voxel grid (size, spacing, origin, direction) of an image on disk. */
-inline itk::MeshExtraction::PhantomGrid
+ME::PhantomGrid
 ReadImageGrid(const std::string & path)
 {
   using ImageType = itk::Image<float, 3>;
-  auto                             reader = itk::ImageFileReader<ImageType>::New();
-  itk::MeshExtraction::PhantomGrid grid;
+  auto reader = itk::ImageFileReader<ImageType>::New();
   if (IsDirectory(path))
   {
     auto image = ReadImageFile<ImageType>(path);
-    grid.size = image->GetLargestPossibleRegion().GetSize();
-    grid.spacing = image->GetSpacing();
-    grid.origin = image->GetOrigin();
-    grid.direction = image->GetDirection();
-    return grid;
+    return GridOf(image.GetPointer());
   }
   RequireReadable(path);
   reader->SetFileName(path);
@@ -148,12 +150,7 @@ ReadImageGrid(const std::string & path)
   {
     itkGenericExceptionMacro("cannot read image '" << path << "': " << e.GetDescription());
   }
-  const ImageType * image = reader->GetOutput();
-  grid.size = image->GetLargestPossibleRegion().GetSize();
-  grid.spacing = image->GetSpacing();
-  grid.origin = image->GetOrigin();
-  grid.direction = image->GetDirection();
-  return grid;
+  return GridOf(reader->GetOutput());
 }
 
 template <typename TImage>
@@ -174,9 +171,22 @@ WriteImageFile(const TImage * image, const std::string & path)
   }
 }
 
-/** Reads a mesh in any format ITK reads (VTK, OBJ, OFF, GIFTI, BYU, FreeSurfer) as
- * a plain itk::Mesh, so that even broken meshes can be measured. */
-inline IOMeshType::Pointer
+// The pixel types the commands read and write.
+#define MESHEXTRACTION_CLI_IMAGE_IO(TPixel)                                                                            \
+  template itk::Image<TPixel, 3>::Pointer ReadImageFile<itk::Image<TPixel, 3>>(const std::string & path);              \
+  template void WriteImageFile<itk::Image<TPixel, 3>>(const itk::Image<TPixel, 3> * image, const std::string & path)
+MESHEXTRACTION_CLI_IMAGE_IO(unsigned char);
+MESHEXTRACTION_CLI_IMAGE_IO(signed char);
+MESHEXTRACTION_CLI_IMAGE_IO(unsigned short);
+MESHEXTRACTION_CLI_IMAGE_IO(short);
+MESHEXTRACTION_CLI_IMAGE_IO(float);
+MESHEXTRACTION_CLI_IMAGE_IO(double);
+#undef MESHEXTRACTION_CLI_IMAGE_IO
+
+// ------------------------------------------------------------------------------
+// Meshes
+// ------------------------------------------------------------------------------
+IOMeshType::Pointer
 ReadMeshFile(const std::string & path)
 {
   RequireReadable(path);
@@ -199,15 +209,34 @@ ReadMeshFile(const std::string & path)
   return mesh;
 }
 
-/** Writes the triangles of any ITK mesh (a QuadEdgeMesh's edge cells are left out)
- * in the format its extension names. */
+QuadEdgeMeshType::Pointer
+ReadManifoldMesh(const std::string & path, const std::string & command)
+{
+  const IOMeshType::Pointer     mesh = ReadMeshFile(path);
+  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  auto                          out = QuadEdgeMeshType::New();
+  try
+  {
+    ME::FillMesh(triangles, *out);
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which '"
+                                 << command << "' needs: " << Describe(e));
+  }
+  return out;
+}
+
+namespace
+{
+/** Writes the triangles of any ITK mesh through a plain itk::Mesh. */
 template <typename TMesh>
 void
-WriteMeshFile(const TMesh * mesh, const std::string & path)
+WriteTriangles(const TMesh * mesh, const std::string & path)
 {
-  const itk::MeshExtraction::IndexedTriangleMesh triangles = itk::MeshExtraction::MakeIndexedTriangleMesh(*mesh);
-  auto                                           out = IOMeshType::New();
-  itk::MeshExtraction::FillMesh(triangles, *out);
+  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  auto                          out = IOMeshType::New();
+  ME::FillMesh(triangles, *out);
   auto writer = itk::MeshFileWriter<IOMeshType>::New();
   writer->SetFileName(path);
   writer->SetInput(out);
@@ -220,7 +249,18 @@ WriteMeshFile(const TMesh * mesh, const std::string & path)
     itkGenericExceptionMacro("cannot write mesh '" << path << "': " << e.GetDescription());
   }
 }
+} // namespace
+
+void
+WriteMeshFile(const IOMeshType * mesh, const std::string & path)
+{
+  WriteTriangles(mesh, path);
+}
+
+void
+WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path)
+{
+  WriteTriangles(mesh, path);
+}
 
 } // namespace MeshExtractionCLI
-
-#endif

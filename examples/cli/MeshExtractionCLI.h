@@ -1,0 +1,373 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#ifndef MeshExtractionCLI_h
+#define MeshExtractionCLI_h
+
+// The meshextraction command-line tool: its commands and the helpers they share.
+// Compiled once into the MeshExtractionCLI library (examples/CMakeLists.txt), which
+// meshextraction and meshextraction-compare link:
+//
+//   MeshExtractionCLICommandLine.cxx   arguments, options, help of a command
+//   MeshExtractionCLIHelpers.cxx       error text, phantom grid options, progress, timing
+//   MeshExtractionCLIIO.cxx            images and meshes on disk, with errors that name the file
+//   MeshExtractionCLIMeasurement.cxx   measuring meshes and writing the figures (table, JSON, CSV)
+//   MeshExtractionCLIRender.cxx        the software renderer of `report`
+//   MeshExtraction<Name>Command.cxx    one command each: phantom, extract, improve, refine,
+//                                      quality, report
+
+#include "itkImage.h"
+#include "itkImageIOBase.h"
+#include "itkImplicitSurfaceFunction.h"
+#include "itkMesh.h"
+#include "itkMeshExtractionDistanceAnalysis.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionPhantoms.h"
+#include "itkMeshExtractionQualityAnalysis.h"
+#include "itkProcessObject.h"
+#include "itkQuadEdgeMesh.h"
+
+#include <chrono>
+#include <functional>
+#include <iosfwd>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace MeshExtractionCLI
+{
+namespace ME = itk::MeshExtraction;
+
+/** How meshes are read, written and measured: a plain itk::Mesh holds even broken meshes. */
+using IOMeshType = itk::Mesh<double, 3>;
+/** What `improve` and `refine` work on: a manifold, consistently oriented triangle mesh. */
+using QuadEdgeMeshType = itk::QuadEdgeMesh<double, 3>;
+
+// ------------------------------------------------------------------------------
+// Command line (MeshExtractionCLICommandLine.cxx)
+// ------------------------------------------------------------------------------
+
+/** A mistake in how the tool was called: printed with the command's usage, exit 2. */
+class UsageError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct OptionSpec
+{
+  std::string name;      ///< without the leading "--"
+  std::string valueName; ///< empty for a flag
+  std::string help;
+  std::string defaultValue;
+};
+
+/** A default value as an OptionSpec prints it (shortest form: 10, 0.001, -0.53), for
+ * defaults taken from a filter rather than written out again. */
+template <typename T>
+std::string
+DefaultText(T value)
+{
+  std::ostringstream os;
+  os << value;
+  return os.str();
+}
+
+/** Parsed arguments of one subcommand. */
+class Arguments
+{
+public:
+  std::vector<std::string> positional;
+
+  bool
+  Has(const std::string & name) const;
+  std::string
+  Get(const std::string & name, const std::string & fallback = std::string()) const;
+  double
+  GetDouble(const std::string & name, double fallback) const;
+  long
+  GetInteger(const std::string & name, long fallback) const;
+  /** A list of numbers separated by 'x' or ','; a single number is repeated `count` times. */
+  std::vector<double>
+  GetNumbers(const std::string & name, unsigned int count) const;
+  void
+  Set(const std::string & name, const std::string & value);
+
+  /** The number `text` of option --name; a UsageError if it is not a finite number. */
+  static double
+  ParseDouble(const std::string & name, const std::string & text);
+
+private:
+  std::map<std::string, std::string> m_Values;
+};
+
+/** A subcommand: its usage line, description, options and body. */
+struct Command
+{
+  std::string                           name;
+  std::string                           summary;
+  std::string                           usage;       ///< after "meshextraction <name> "
+  std::string                           description; ///< paragraphs shown by --help
+  std::vector<OptionSpec>               options;
+  std::function<int(const Arguments &)> run;
+  unsigned int                          minimumPositional{ 0 };
+  unsigned int                          maximumPositional{ 1000 };
+
+  void
+  PrintHelp(std::ostream & os) const;
+  /** The options (--name VALUE, --name=VALUE, --flag) and positional arguments; a
+   * UsageError for an unknown option, a missing or unexpected value, or too few or too
+   * many positional arguments. */
+  Arguments
+  Parse(int argc, char * argv[]) const;
+};
+
+/** The names an option accepts, each with its value. */
+template <typename T>
+using OptionNames = std::vector<std::pair<std::string, T>>;
+
+/** The names of `table` joined as "a, b or c" (or "a|b|c" with `bars`). */
+template <typename T>
+std::string
+OptionChoices(const OptionNames<T> & table, bool bars = false)
+{
+  std::string list;
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    list += (i == 0 ? "" : (bars ? "|" : (i + 1 == table.size() ? " or " : ", "))) + table[i].first;
+  }
+  return list;
+}
+
+/** The name of `value` in `table`. */
+template <typename T>
+std::string
+OptionName(const OptionNames<T> & table, T value)
+{
+  for (const auto & entry : table)
+  {
+    if (entry.second == value)
+    {
+      return entry.first;
+    }
+  }
+  return "";
+}
+
+/** The value of `--name` in `table`, or `fallback`. */
+template <typename T>
+T
+ChooseOption(const Arguments & args, const std::string & name, const OptionNames<T> & table, T fallback)
+{
+  if (!args.Has(name))
+  {
+    return fallback;
+  }
+  const std::string value = args.Get(name);
+  for (const auto & entry : table)
+  {
+    if (entry.first == value)
+    {
+      return entry.second;
+    }
+  }
+  throw UsageError("--" + name + " must be " + OptionChoices(table) + ", got '" + value + "'");
+}
+
+// ------------------------------------------------------------------------------
+// Shared helpers (MeshExtractionCLIHelpers.cxx)
+// ------------------------------------------------------------------------------
+
+/** An ITK exception's description without ITK's "ITK ERROR: Class(0x...): " prefix. */
+std::string
+Describe(const itk::ExceptionObject & e);
+
+/** --size, --spacing, --origin and --direction: the grid of a phantom. */
+std::vector<OptionSpec>
+GridOptions();
+
+/** The phantom's default grid, changed by the grid options given; a UsageError for a
+ * size below 2 voxels, a spacing that is not positive or a direction that is not
+ * orthonormal. */
+ME::PhantomGrid
+GridFromArguments(ME::PhantomShape shape, const Arguments & args);
+
+/** The phantom shape of that name; a UsageError naming the shapes otherwise. */
+ME::PhantomShape
+ShapeFromName(const std::string & name);
+
+/** Prints "label: 42%" on stderr as `process` progresses, every 10%. */
+void
+ReportProgress(itk::ProcessObject * process, const std::string & label);
+
+/** Wall-clock timer for messages on stderr. */
+class Stopwatch
+{
+public:
+  double
+  Seconds() const;
+
+private:
+  std::chrono::steady_clock::time_point m_Start{ std::chrono::steady_clock::now() };
+};
+
+// ------------------------------------------------------------------------------
+// Images and meshes on disk (MeshExtractionCLIIO.cxx). Every failure is an
+// itk::ExceptionObject that names the file and the problem.
+// ------------------------------------------------------------------------------
+
+/** Reads a 3-D image from a file (any format ITK reads) or a DICOM series directory.
+ * Provided for itk::Image<T, 3> with T = unsigned char, signed char, unsigned short,
+ * short, float and double. */
+template <typename TImage>
+typename TImage::Pointer
+ReadImageFile(const std::string & path);
+
+/** Header information of an image file or DICOM directory: component type and dimension. */
+itk::ImageIOBase::Pointer
+ReadImageInformation(const std::string & path);
+
+/** The voxel grid (size, spacing, origin, direction) of an image on disk. */
+ME::PhantomGrid
+ReadImageGrid(const std::string & path);
+
+/** Writes an image (compressed where the format allows) in the format the extension
+ * names. Provided for the pixel types of ReadImageFile. */
+template <typename TImage>
+void
+WriteImageFile(const TImage * image, const std::string & path);
+
+/** Reads a mesh in any format ITK reads (VTK, OBJ, OFF, GIFTI, BYU, FreeSurfer) as a
+ * plain itk::Mesh, so that even broken meshes can be measured. */
+IOMeshType::Pointer
+ReadMeshFile(const std::string & path);
+
+/** Reads any mesh ITK reads into a triangle QuadEdgeMesh (quadrilaterals are split
+ * along their shorter diagonal); a mesh the quad-edge structure cannot hold
+ * (non-manifold edges, inconsistent orientation) is refused with an error that says
+ * `command` needs one. */
+QuadEdgeMeshType::Pointer
+ReadManifoldMesh(const std::string & path, const std::string & command);
+
+/** Writes the triangles of a mesh (a QuadEdgeMesh's edge cells are left out) in the
+ * format its extension names. */
+void
+WriteMeshFile(const IOMeshType * mesh, const std::string & path);
+void
+WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path);
+
+// ------------------------------------------------------------------------------
+// Measuring meshes (MeshExtractionCLIMeasurement.cxx)
+// ------------------------------------------------------------------------------
+
+/** A mesh's quality report and, when measured against a reference, its distances. */
+struct MeasuredMesh
+{
+  std::string                   name;
+  ME::TriangleMeshQualityReport quality;
+  bool                          hasDistance{ false };
+  ME::MeshSurfaceDistanceReport distance;
+};
+
+/** What a measurement compares a mesh with; everything else keeps the calculators'
+ * defaults. */
+struct MeasureSettings
+{
+  /** Distances to this exact surface; else to `referenceMesh`; else none. */
+  const itk::ImplicitSurfaceFunction * referenceSurface{ nullptr };
+  const IOMeshType *                   referenceMesh{ nullptr };
+  /** Count the triangles flipped against this mesh (same connectivity). */
+  const IOMeshType * inversionReference{ nullptr };
+  bool               selfIntersections{ true };
+  bool               outwardOrientation{ true };
+  /** Subdivisions per triangle edge for the Hausdorff samples. */
+  unsigned int samplingLevel{ 2 };
+};
+
+/** Measures `mesh` with TriangleMeshQualityCalculator and, given a reference,
+ * MeshSurfaceDistanceCalculator. `triangleQArea`, if given, receives each triangle's
+ * q_area in the order of ME::MakeIndexedTriangleMesh. */
+MeasuredMesh
+MeasureMesh(const IOMeshType *      mesh,
+            const std::string &     name,
+            const MeasureSettings & settings = MeasureSettings(),
+            std::vector<double> *   triangleQArea = nullptr);
+/** The same for a QuadEdgeMesh, with distances to an exact surface only. */
+MeasuredMesh
+MeasureMesh(const QuadEdgeMeshType *             mesh,
+            const std::string &                  name,
+            const itk::ImplicitSurfaceFunction * referenceSurface = nullptr);
+
+/** Prints the quality report (and the distances, if measured) of one mesh. */
+void
+PrintMeasuredMesh(const MeasuredMesh & mesh, const std::string & title, std::ostream & os);
+
+/** A side-by-side table of several meshes. */
+void
+PrintComparison(const std::vector<MeasuredMesh> & meshes, std::ostream & os);
+
+/** The reports as a JSON array. */
+void
+WriteJSON(const std::vector<MeasuredMesh> & meshes, const std::string & path);
+
+/** The quality histograms (q_area, q_angle, q_length, angles, valences) as CSV. */
+void
+WriteHistogramsCSV(const std::vector<MeasuredMesh> & meshes, const std::string & path);
+
+// ------------------------------------------------------------------------------
+// Rendering (MeshExtractionCLIRender.cxx): orthographic, z-buffered, flat-shaded
+// triangles, written as PNG through ITK, without a display or OpenGL.
+// ------------------------------------------------------------------------------
+
+struct RenderOptions
+{
+  unsigned int width{ 640 };
+  unsigned int height{ 480 };
+  double       azimuthDegrees{ 35.0 };
+  double       elevationDegrees{ 25.0 };
+  double       zoom{ 1.0 }; ///< >1 magnifies the centre of the view
+  bool         outlineTriangles{ false };
+  /** Per-triangle value in [0, 1] mapped to colour (empty: grey). */
+  const std::vector<double> * triangleValues{ nullptr };
+};
+
+/** Renders the mesh and writes a PNG (or any 2-D RGB format ITK writes). */
+void
+RenderMesh(const ME::IndexedTriangleMesh & mesh, const RenderOptions & options, const std::string & path);
+
+// ------------------------------------------------------------------------------
+// The commands (MeshExtraction<Name>Command.cxx)
+// ------------------------------------------------------------------------------
+Command
+MakePhantomCommand();
+Command
+MakeExtractCommand();
+Command
+MakeImproveCommand();
+Command
+MakeRefineCommand();
+Command
+MakeQualityCommand();
+Command
+MakeReportCommand();
+
+} // namespace MeshExtractionCLI
+
+#endif
