@@ -118,6 +118,22 @@ public:
     /** One centroid smoothing step ("S"). */
     Smoothing
   };
+
+  /** The distension that ThreeLandmarkIncrementalTransformInitializer adds to the
+   * rigid incremental match (thesis section 6.2.2: "distention can be described by
+   * scaling along these axes"). */
+  enum class LandmarkDistension : std::uint8_t
+  {
+    /** Rigid: translation of A, rotation of B about A, rotation of C about AB. */
+    None = 0,
+    /** One scale factor, |A'B'| / |AB|, so that B lands on its counterpart
+     * (a Similarity3DTransform or an AffineTransform). */
+    Isotropic,
+    /** A scale along AB (B lands on its counterpart) and one along the perpendicular
+     * from AB through C (C's distance to the axis matches); none across the plane ABC
+     * (an AffineTransform). */
+    AlongAxes
+  };
 };
 
 MeshExtraction_EXPORT std::ostream &
@@ -134,6 +150,8 @@ MeshExtraction_EXPORT std::ostream &
                       operator<<(std::ostream & out, MeshExtractionEnums::EdgeSearchDirection value);
 MeshExtraction_EXPORT std::ostream &
                       operator<<(std::ostream & out, MeshExtractionEnums::RefinementOperation value);
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & out, MeshExtractionEnums::LandmarkDistension value);
 
 } // namespace itk
 

@@ -127,4 +127,18 @@ operator<<(std::ostream & out, MeshExtractionEnums::RefinementOperation value)
   }
   return out << "INVALID VALUE FOR itk::MeshExtractionEnums::RefinementOperation";
 }
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::LandmarkDistension value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::LandmarkDistension::None:
+      return out << "itk::MeshExtractionEnums::LandmarkDistension::None";
+    case MeshExtractionEnums::LandmarkDistension::Isotropic:
+      return out << "itk::MeshExtractionEnums::LandmarkDistension::Isotropic";
+    case MeshExtractionEnums::LandmarkDistension::AlongAxes:
+      return out << "itk::MeshExtractionEnums::LandmarkDistension::AlongAxes";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::LandmarkDistension";
+}
 } // namespace itk
