@@ -18,6 +18,7 @@ itk_module(MeshExtraction
     ITKImageGrid
     ITKImageIntensity
     ITKImageSources
+    ITKTransform
     ITKImageNoise
   TEST_DEPENDS
     ITKTestKernel
@@ -29,6 +30,7 @@ itk_module(MeshExtraction
     ITKIOMeshVTK
     ITKIOMeshOBJ
     ITKIOMeshOFF
+    ITKRegistrationCommon
   DESCRIPTION
     "${DOCUMENTATION}"
   EXCLUDE_FROM_DEFAULT

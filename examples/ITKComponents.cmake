@@ -14,4 +14,8 @@ set(MeshExtractionExamples_ITK_COMPONENTS
   ITKIOMeshGifti
   ITKIOMeshBYU
   ITKIOMeshFreeSurfer
+  ITKIOTransformBase
+  ITKIOTransformInsightLegacy
+  ITKIOTransformHDF5
+  ITKRegistrationCommon
 )

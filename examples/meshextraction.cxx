@@ -23,6 +23,7 @@
 //   meshextraction refine IMAGE MESH OUT [options]   scale-space edge refinement (ch. 4)
 //   meshextraction report DIR MESH... [options]      HTML report with plots and renderings
 //   meshextraction quality MESH... [options]         measure meshes
+//   meshextraction match FIXED MOVING [options]      three-landmark matching (ch. 6)
 //
 // Run `meshextraction COMMAND --help` for the options of each command.
 
@@ -39,8 +40,8 @@ namespace
 std::vector<Command>
 Commands()
 {
-  return { MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(),
-           MakeRefineCommand(),  MakeQualityCommand(), MakeReportCommand() };
+  return { MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(), MakeRefineCommand(),
+           MakeQualityCommand(), MakeReportCommand(),  MakeMatchCommand() };
 }
 void
 PrintUsage(std::ostream & os, const std::vector<Command> & commands)

@@ -358,6 +358,8 @@ RenderMesh(const ME::IndexedTriangleMesh & mesh, const RenderOptions & options, 
 Command
 MakePhantomCommand();
 Command
+MakeMatchCommand();
+Command
 MakeExtractCommand();
 Command
 MakeImproveCommand();
