@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 namespace ME = itk::MeshExtraction;
@@ -40,10 +41,19 @@ ParseError(const std::string & text)
   return "no exception";
 }
 
+/** A directory of this test's own under the system's temporary directory. */
+std::string
+Scratch()
+{
+  const std::string directory = (std::filesystem::temp_directory_path() / "meshextraction-landmark-test").string();
+  itksys::SystemTools::MakeDirectory(directory);
+  return directory;
+}
+
 std::string
 WriteText(const std::string & name, const std::string & text)
 {
-  const std::string path = std::string(itksys::SystemTools::GetCurrentWorkingDirectory()) + "/" + name;
+  const std::string path = Scratch() + "/" + name;
   std::ofstream(path) << text;
   return path;
 }
@@ -119,7 +129,7 @@ TEST(LandmarkFile, ReadsTheModuleFormatAndSlicerMarkups)
   EXPECT_EQ(picked[0][0], 7.0);
 
   // Round trip through the writer.
-  const std::string written = std::string(itksys::SystemTools::GetCurrentWorkingDirectory()) + "/written.json";
+  const std::string written = Scratch() + "/written.json";
   ME::WriteLandmarkFile(written, s);
   const auto back = ME::ReadLandmarkFile(written);
   ASSERT_EQ(back.size(), 2u);
