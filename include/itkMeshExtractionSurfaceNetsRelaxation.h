@@ -23,6 +23,7 @@
 #include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSurfaceNets.h"
+#include "itkSurfaceNetsImageToMeshFilterEnums.h"
 #include "itkImage.h"
 
 #include <algorithm>
@@ -305,35 +306,24 @@ private:
   std::vector<Vec3>         m_Gradients;
 };
 
-/** How the nodes move (thesis section 3.2). */
-enum class SurfaceNetsRelaxationKind : std::uint8_t
-{
-  None,      ///< nodes stay where the net put them
-  Averaging, ///< SNA: to the average of the linked nodes (eq. 3.1-3.2)
-  Gradient,  ///< along the gradient to the iso-surface (eq. 3.3-3.4)
-  Combined   ///< SNERT: averaging within the iso-surface plus the gradient step (eq. 3.5-3.6)
-};
-
+/** How RelaxSurfaceNet moves the nodes (thesis section 3.2). `kind` is the filter's
+ * Relaxation: None (and Automatic, which the filter resolves before it relaxes) leaves
+ * the nodes where the net put them; Averaging is SNA (eq. 3.1-3.2), Gradient the step
+ * to the iso-surface (eq. 3.3-3.4), Combined SNERT (eq. 3.5-3.6). */
 struct SurfaceNetsRelaxationParameters
 {
-  SurfaceNetsRelaxationKind kind{ SurfaceNetsRelaxationKind::Combined };
-  unsigned int              maximumNumberOfIterations{ 20 };
-  double                    convergenceThreshold{ 1e-3 }; ///< largest relocation (voxels) that ends the iterations
-  double                    smoothingWeight{ 1.0 };       ///< weight of the averaging vector
-  double                    projectionWeight{ 1.0 };      ///< weight of the step to the iso-surface
-  bool                      sequential{ false };          ///< average, then project, within each iteration (3.2.4)
+  SurfaceNetsImageToMeshFilterEnums::Relaxation kind{ SurfaceNetsImageToMeshFilterEnums::Relaxation::Combined };
+  unsigned int                                  maximumNumberOfIterations{ 20 };
+  double convergenceThreshold{ 1e-3 }; ///< largest relocation (voxels) that ends the iterations
+  double smoothingWeight{ 1.0 };       ///< weight of the averaging vector
+  double projectionWeight{ 1.0 };      ///< weight of the step to the iso-surface
+  bool   sequential{ false };          ///< average, then project, within each iteration (3.2.4)
   /** The gradient is the sampler's central differences: cache them, with the voxel
    * values, at the 8 corners of each node's cell (set by the filter). */
   bool                 centralDifferences{ true };
   double               isoValue{ 0.0 };
   Matrix<double, 3, 3> indexToPhysical; ///< direction * diag(spacing)
   unsigned int         numberOfWorkUnits{ 0 };
-};
-
-struct SurfaceNetsRelaxationResult
-{
-  unsigned int iterations{ 0 };
-  double       lastMaximumRelocation{ 0.0 };
 };
 
 /** Scale d so that p + d stays in the box [lower, upper] (thesis eq. 3.2, the
@@ -401,12 +391,14 @@ RelaxSurfaceNet(SurfaceNet &                            net,
                 SurfaceNetsCellCache *                  cellCache = nullptr)
 {
   SurfaceNetsRelaxationResult result;
-  if (parameters.kind == SurfaceNetsRelaxationKind::None || parameters.maximumNumberOfIterations == 0)
+  using RelaxationEnum = SurfaceNetsImageToMeshFilterEnums::Relaxation;
+  if (parameters.kind == RelaxationEnum::None || parameters.kind == RelaxationEnum::Automatic ||
+      parameters.maximumNumberOfIterations == 0)
   {
     return result;
   }
-  const bool useGradient = parameters.kind != SurfaceNetsRelaxationKind::Averaging;
-  const bool useAveraging = parameters.kind != SurfaceNetsRelaxationKind::Gradient;
+  const bool useGradient = parameters.kind != RelaxationEnum::Averaging;
+  const bool useAveraging = parameters.kind != RelaxationEnum::Gradient;
   if (useGradient && sampler == nullptr)
   {
     itkGenericExceptionMacro("SurfaceNets: gradient relaxation needs a greyscale image.");

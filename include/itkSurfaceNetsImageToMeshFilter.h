@@ -260,7 +260,7 @@ protected:
   ClassifyCells();
   /** Stage 3: relax the net along its links (at most `iterations` times). With
    * `cellCache`, the nodes' cells are read once for every call on this net. */
-  MeshExtraction::SurfaceNetsRelaxationResultSummary
+  MeshExtraction::SurfaceNetsRelaxationResult
   RelaxNet(RelaxationEnum                         relaxation,
            unsigned int                           iterations,
            MeshExtraction::SurfaceNetsCellCache * cellCache = nullptr);

@@ -191,7 +191,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
-MeshExtraction::SurfaceNetsRelaxationResultSummary
+MeshExtraction::SurfaceNetsRelaxationResult
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
   RelaxationEnum                         relaxation,
   unsigned int                           iterations,
@@ -200,22 +200,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
   using namespace MeshExtraction;
   const InputImageType *          input = this->GetSampledInput();
   SurfaceNetsRelaxationParameters p;
-  switch (relaxation)
-  {
-    case RelaxationEnum::None:
-    case RelaxationEnum::Automatic:
-      p.kind = SurfaceNetsRelaxationKind::None;
-      break;
-    case RelaxationEnum::Averaging:
-      p.kind = SurfaceNetsRelaxationKind::Averaging;
-      break;
-    case RelaxationEnum::Gradient:
-      p.kind = SurfaceNetsRelaxationKind::Gradient;
-      break;
-    case RelaxationEnum::Combined:
-      p.kind = SurfaceNetsRelaxationKind::Combined;
-      break;
-  }
+  p.kind = relaxation;
   p.maximumNumberOfIterations = iterations;
   p.convergenceThreshold = m_ConvergenceThreshold;
   p.smoothingWeight = m_SmoothingWeight;
@@ -239,16 +224,16 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
 
   const SurfaceNetsSampler<InputImageType> sampler(input, m_IsoValue, m_InsideIsAboveIsoValue ? -1.0 : 1.0);
 
-  SurfaceNetsRelaxationResult result;
-  if (p.kind == SurfaceNetsRelaxationKind::Averaging || p.kind == SurfaceNetsRelaxationKind::None)
+  if (relaxation != RelaxationEnum::Gradient && relaxation != RelaxationEnum::Combined)
   {
-    result = RelaxSurfaceNet(
+    // No step to the iso-surface: no gradient.
+    return RelaxSurfaceNet(
       m_Net, &sampler, [](const Vec3 &, std::uint32_t) { return MakeVec3(0, 0, 0); }, p, progress, cellCache);
   }
-  else if (m_GradientMethod == GradientEnum::GaussianDerivative)
+  if (m_GradientMethod == GradientEnum::GaussianDerivative)
   {
     const SurfaceNetsGaussianGradient<InputImageType> gaussian(input, m_Net, m_GradientSigma);
-    result = RelaxSurfaceNet(
+    return RelaxSurfaceNet(
       m_Net,
       &sampler,
       [this, &gaussian](const Vec3 & q, std::uint32_t node) { return gaussian.Gradient(q, m_Net.nodeCell[node]); },
@@ -256,17 +241,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
       progress,
       cellCache);
   }
-  else
-  {
-    result = RelaxSurfaceNet(
-      m_Net,
-      &sampler,
-      [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); },
-      p,
-      progress,
-      cellCache);
-  }
-  return { result.iterations, result.lastMaximumRelocation };
+  return RelaxSurfaceNet(
+    m_Net, &sampler, [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); }, p, progress, cellCache);
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
