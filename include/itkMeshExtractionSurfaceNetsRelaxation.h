@@ -182,82 +182,14 @@ public:
     {
       m_Size[d] = static_cast<std::int64_t>(region.GetSize(d));
     }
-    m_Keys.reserve(net.cells.size() * 2);
-    for (const auto & c : net.cells)
-    {
-      for (unsigned int k = 0; k < 8; ++k)
-      {
-        const auto v = CornerVoxel(c, k);
-        m_Keys.push_back(Key(v[0], v[1], v[2]));
-      }
-    }
-    std::sort(m_Keys.begin(), m_Keys.end());
-    m_Keys.erase(std::unique(m_Keys.begin(), m_Keys.end()), m_Keys.end());
+    this->CollectCornerVoxels();
     m_Gradients.resize(m_Keys.size());
-    // Per axis d, the derivative kernel along d and the Gaussian along the other two,
-    // applied at each corner voxel in one pass over its neighbourhood; voxels beyond
-    // the image take the value of the nearest image voxel (zero flux, as ITK's
-    // neighbourhood functions do).
-    std::vector<float> smooth[3];
-    std::vector<float> derivative[3];
-    int                radius[3];
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      smooth[d] = GaussianKernel(sigma, image->GetSpacing()[d], 0);
-      derivative[d] = GaussianKernel(sigma, image->GetSpacing()[d], 1);
-      // Both centred, the shorter padded with zeros to the longer's size.
-      auto &            shorter = smooth[d].size() < derivative[d].size() ? smooth[d] : derivative[d];
-      const std::size_t pad = (std::max(smooth[d].size(), derivative[d].size()) - shorter.size()) / 2;
-      shorter.insert(shorter.begin(), pad, 0.0f);
-      shorter.insert(shorter.end(), pad, 0.0f);
-      radius[d] = static_cast<int>(smooth[d].size() / 2);
-    }
-    const auto *       buffer = image->GetBufferPointer();
-    const std::int64_t sx = m_Size[0];
-    const std::int64_t sxy = m_Size[0] * m_Size[1];
-    auto               at = [](std::int64_t v, std::int64_t size) { return std::clamp<std::int64_t>(v, 0, size - 1); };
+    const Kernels kernels(image, sigma);
     ParallelForBlocks(m_Keys.size(), 4096, [&](std::size_t begin, std::size_t end, std::size_t) {
-      std::vector<std::int64_t> xs(smooth[0].size());
+      std::vector<std::int64_t> xs(kernels.smooth[0].size());
       for (std::size_t i = begin; i < end; ++i)
       {
-        std::int64_t xyz[3];
-        Unkey(m_Keys[i], xyz);
-        // Voxels beyond the image take the gradient of the nearest image voxel.
-        for (unsigned int d = 0; d < 3; ++d)
-        {
-          xyz[d] = at(xyz[d], m_Size[d]);
-        }
-        for (int a = -radius[0]; a <= radius[0]; ++a)
-        {
-          xs[static_cast<std::size_t>(a + radius[0])] = at(xyz[0] + a, m_Size[0]);
-        }
-        double gradient[3] = { 0.0, 0.0, 0.0 };
-        for (int c = -radius[2]; c <= radius[2]; ++c)
-        {
-          const std::int64_t z = at(xyz[2] + c, m_Size[2]);
-          const auto         kc = static_cast<std::size_t>(c + radius[2]);
-          for (int b = -radius[1]; b <= radius[1]; ++b)
-          {
-            const auto * row = buffer + z * sxy + at(xyz[1] + b, m_Size[1]) * sx;
-            double       rowSmooth = 0.0;
-            double       rowDerivative = 0.0;
-            for (std::size_t a = 0; a < xs.size(); ++a)
-            {
-              const auto value = static_cast<double>(row[xs[a]]);
-              rowSmooth += smooth[0][a] * value;
-              rowDerivative += derivative[0][a] * value;
-            }
-            const auto kb = static_cast<std::size_t>(b + radius[1]);
-            gradient[0] += smooth[1][kb] * smooth[2][kc] * rowDerivative;
-            gradient[1] += derivative[1][kb] * smooth[2][kc] * rowSmooth;
-            gradient[2] += smooth[1][kb] * derivative[2][kc] * rowSmooth;
-          }
-        }
-        for (unsigned int d = 0; d < 3; ++d)
-        {
-          // Per millimetre along the image axis -> per voxel.
-          m_Gradients[i][d] = gradient[d] * image->GetSpacing()[d];
-        }
+        this->ComputeGradient(image, kernels, i, xs);
       }
     });
   }
@@ -287,6 +219,98 @@ public:
   }
 
 private:
+  /** Per axis d, the derivative kernel along d and the Gaussian (both centred, the
+   * shorter padded with zeros to the longer's size), and their radius. */
+  struct Kernels
+  {
+    std::vector<float> smooth[3];
+    std::vector<float> derivative[3];
+    int                radius[3];
+
+    Kernels(const TImage * image, double sigma)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        smooth[d] = GaussianKernel(sigma, image->GetSpacing()[d], 0);
+        derivative[d] = GaussianKernel(sigma, image->GetSpacing()[d], 1);
+        auto &            shorter = smooth[d].size() < derivative[d].size() ? smooth[d] : derivative[d];
+        const std::size_t pad = (std::max(smooth[d].size(), derivative[d].size()) - shorter.size()) / 2;
+        shorter.insert(shorter.begin(), pad, 0.0f);
+        shorter.insert(shorter.end(), pad, 0.0f);
+        radius[d] = static_cast<int>(smooth[d].size() / 2);
+      }
+    }
+  };
+
+  /** The corner voxels of every surface cell, once each, as sorted keys. */
+  void
+  CollectCornerVoxels()
+  {
+    m_Keys.reserve(m_Net.cells.size() * 2);
+    for (const auto & c : m_Net.cells)
+    {
+      for (unsigned int k = 0; k < 8; ++k)
+      {
+        const auto v = CornerVoxel(c, k);
+        m_Keys.push_back(Key(v[0], v[1], v[2]));
+      }
+    }
+    std::sort(m_Keys.begin(), m_Keys.end());
+    m_Keys.erase(std::unique(m_Keys.begin(), m_Keys.end()), m_Keys.end());
+  }
+
+  /** The gradient at corner voxel i: per axis d, the derivative kernel along d and the
+   * Gaussian along the other two, applied in one pass over the voxel's neighbourhood;
+   * voxels beyond the image take the value of the nearest image voxel (zero flux, as
+   * ITK's neighbourhood functions do). `xs`: room for the kernel's x indices. */
+  void
+  ComputeGradient(const TImage * image, const Kernels & kernels, std::size_t i, std::vector<std::int64_t> & xs)
+  {
+    const auto *       buffer = image->GetBufferPointer();
+    const std::int64_t sx = m_Size[0];
+    const std::int64_t sxy = m_Size[0] * m_Size[1];
+    auto               at = [](std::int64_t v, std::int64_t size) { return std::clamp<std::int64_t>(v, 0, size - 1); };
+    const int *        radius = kernels.radius;
+    std::int64_t       xyz[3];
+    Unkey(m_Keys[i], xyz);
+    // Voxels beyond the image take the gradient of the nearest image voxel.
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      xyz[d] = at(xyz[d], m_Size[d]);
+    }
+    for (int a = -radius[0]; a <= radius[0]; ++a)
+    {
+      xs[static_cast<std::size_t>(a + radius[0])] = at(xyz[0] + a, m_Size[0]);
+    }
+    double gradient[3] = { 0.0, 0.0, 0.0 };
+    for (int c = -radius[2]; c <= radius[2]; ++c)
+    {
+      const std::int64_t z = at(xyz[2] + c, m_Size[2]);
+      const auto         kc = static_cast<std::size_t>(c + radius[2]);
+      for (int b = -radius[1]; b <= radius[1]; ++b)
+      {
+        const auto * row = buffer + z * sxy + at(xyz[1] + b, m_Size[1]) * sx;
+        double       rowSmooth = 0.0;
+        double       rowDerivative = 0.0;
+        for (std::size_t a = 0; a < xs.size(); ++a)
+        {
+          const auto value = static_cast<double>(row[xs[a]]);
+          rowSmooth += kernels.smooth[0][a] * value;
+          rowDerivative += kernels.derivative[0][a] * value;
+        }
+        const auto kb = static_cast<std::size_t>(b + radius[1]);
+        gradient[0] += kernels.smooth[1][kb] * kernels.smooth[2][kc] * rowDerivative;
+        gradient[1] += kernels.derivative[1][kb] * kernels.smooth[2][kc] * rowSmooth;
+        gradient[2] += kernels.smooth[1][kb] * kernels.derivative[2][kc] * rowSmooth;
+      }
+    }
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      // Per millimetre along the image axis -> per voxel.
+      m_Gradients[i][d] = gradient[d] * image->GetSpacing()[d];
+    }
+  }
+
   std::int64_t
   Key(std::int64_t x, std::int64_t y, std::int64_t z) const
   {
