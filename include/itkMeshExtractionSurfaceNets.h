@@ -146,7 +146,7 @@ MeshExtraction_EXPORT void
 BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits = 0);
 
 /** Iterations run and the last largest relocation (voxels) of a relaxation. */
-struct SurfaceNetsRelaxationResultSummary
+struct SurfaceNetsRelaxationResult
 {
   unsigned int iterations{ 0 };
   double       lastMaximumRelocation{ 0.0 };

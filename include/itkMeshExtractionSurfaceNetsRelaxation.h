@@ -23,11 +23,13 @@
 #include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSurfaceNets.h"
+#include "itkSurfaceNetsImageToMeshFilterEnums.h"
 #include "itkImage.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <type_traits>
 #if defined(__SSE2__)
 #  include <emmintrin.h>
@@ -180,82 +182,14 @@ public:
     {
       m_Size[d] = static_cast<std::int64_t>(region.GetSize(d));
     }
-    m_Keys.reserve(net.cells.size() * 2);
-    for (const auto & c : net.cells)
-    {
-      for (unsigned int k = 0; k < 8; ++k)
-      {
-        const auto v = CornerVoxel(c, k);
-        m_Keys.push_back(Key(v[0], v[1], v[2]));
-      }
-    }
-    std::sort(m_Keys.begin(), m_Keys.end());
-    m_Keys.erase(std::unique(m_Keys.begin(), m_Keys.end()), m_Keys.end());
+    this->CollectCornerVoxels();
     m_Gradients.resize(m_Keys.size());
-    // Per axis d, the derivative kernel along d and the Gaussian along the other two,
-    // applied at each corner voxel in one pass over its neighbourhood; voxels beyond
-    // the image take the value of the nearest image voxel (zero flux, as ITK's
-    // neighbourhood functions do).
-    std::vector<float> smooth[3];
-    std::vector<float> derivative[3];
-    int                radius[3];
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      smooth[d] = GaussianKernel(sigma, image->GetSpacing()[d], 0);
-      derivative[d] = GaussianKernel(sigma, image->GetSpacing()[d], 1);
-      // Both centred, the shorter padded with zeros to the longer's size.
-      auto &            shorter = smooth[d].size() < derivative[d].size() ? smooth[d] : derivative[d];
-      const std::size_t pad = (std::max(smooth[d].size(), derivative[d].size()) - shorter.size()) / 2;
-      shorter.insert(shorter.begin(), pad, 0.0f);
-      shorter.insert(shorter.end(), pad, 0.0f);
-      radius[d] = static_cast<int>(smooth[d].size() / 2);
-    }
-    const auto *       buffer = image->GetBufferPointer();
-    const std::int64_t sx = m_Size[0];
-    const std::int64_t sxy = m_Size[0] * m_Size[1];
-    auto               at = [](std::int64_t v, std::int64_t size) { return std::clamp<std::int64_t>(v, 0, size - 1); };
+    const Kernels kernels(image, sigma);
     ParallelForBlocks(m_Keys.size(), 4096, [&](std::size_t begin, std::size_t end, std::size_t) {
-      std::vector<std::int64_t> xs(smooth[0].size());
+      std::vector<std::int64_t> xs(kernels.smooth[0].size());
       for (std::size_t i = begin; i < end; ++i)
       {
-        std::int64_t xyz[3];
-        Unkey(m_Keys[i], xyz);
-        // Voxels beyond the image take the gradient of the nearest image voxel.
-        for (unsigned int d = 0; d < 3; ++d)
-        {
-          xyz[d] = at(xyz[d], m_Size[d]);
-        }
-        for (int a = -radius[0]; a <= radius[0]; ++a)
-        {
-          xs[static_cast<std::size_t>(a + radius[0])] = at(xyz[0] + a, m_Size[0]);
-        }
-        double gradient[3] = { 0.0, 0.0, 0.0 };
-        for (int c = -radius[2]; c <= radius[2]; ++c)
-        {
-          const std::int64_t z = at(xyz[2] + c, m_Size[2]);
-          const auto         kc = static_cast<std::size_t>(c + radius[2]);
-          for (int b = -radius[1]; b <= radius[1]; ++b)
-          {
-            const auto * row = buffer + z * sxy + at(xyz[1] + b, m_Size[1]) * sx;
-            double       rowSmooth = 0.0;
-            double       rowDerivative = 0.0;
-            for (std::size_t a = 0; a < xs.size(); ++a)
-            {
-              const auto value = static_cast<double>(row[xs[a]]);
-              rowSmooth += smooth[0][a] * value;
-              rowDerivative += derivative[0][a] * value;
-            }
-            const auto kb = static_cast<std::size_t>(b + radius[1]);
-            gradient[0] += smooth[1][kb] * smooth[2][kc] * rowDerivative;
-            gradient[1] += derivative[1][kb] * smooth[2][kc] * rowSmooth;
-            gradient[2] += smooth[1][kb] * derivative[2][kc] * rowSmooth;
-          }
-        }
-        for (unsigned int d = 0; d < 3; ++d)
-        {
-          // Per millimetre along the image axis -> per voxel.
-          m_Gradients[i][d] = gradient[d] * image->GetSpacing()[d];
-        }
+        this->ComputeGradient(image, kernels, i, xs);
       }
     });
   }
@@ -285,6 +219,98 @@ public:
   }
 
 private:
+  /** Per axis d, the derivative kernel along d and the Gaussian (both centred, the
+   * shorter padded with zeros to the longer's size), and their radius. */
+  struct Kernels
+  {
+    std::vector<float> smooth[3];
+    std::vector<float> derivative[3];
+    int                radius[3];
+
+    Kernels(const TImage * image, double sigma)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        smooth[d] = GaussianKernel(sigma, image->GetSpacing()[d], 0);
+        derivative[d] = GaussianKernel(sigma, image->GetSpacing()[d], 1);
+        auto &            shorter = smooth[d].size() < derivative[d].size() ? smooth[d] : derivative[d];
+        const std::size_t pad = (std::max(smooth[d].size(), derivative[d].size()) - shorter.size()) / 2;
+        shorter.insert(shorter.begin(), pad, 0.0f);
+        shorter.insert(shorter.end(), pad, 0.0f);
+        radius[d] = static_cast<int>(smooth[d].size() / 2);
+      }
+    }
+  };
+
+  /** The corner voxels of every surface cell, once each, as sorted keys. */
+  void
+  CollectCornerVoxels()
+  {
+    m_Keys.reserve(m_Net.cells.size() * 2);
+    for (const auto & c : m_Net.cells)
+    {
+      for (unsigned int k = 0; k < 8; ++k)
+      {
+        const auto v = CornerVoxel(c, k);
+        m_Keys.push_back(Key(v[0], v[1], v[2]));
+      }
+    }
+    std::sort(m_Keys.begin(), m_Keys.end());
+    m_Keys.erase(std::unique(m_Keys.begin(), m_Keys.end()), m_Keys.end());
+  }
+
+  /** The gradient at corner voxel i: per axis d, the derivative kernel along d and the
+   * Gaussian along the other two, applied in one pass over the voxel's neighbourhood;
+   * voxels beyond the image take the value of the nearest image voxel (zero flux, as
+   * ITK's neighbourhood functions do). `xs`: room for the kernel's x indices. */
+  void
+  ComputeGradient(const TImage * image, const Kernels & kernels, std::size_t i, std::vector<std::int64_t> & xs)
+  {
+    const auto *       buffer = image->GetBufferPointer();
+    const std::int64_t sx = m_Size[0];
+    const std::int64_t sxy = m_Size[0] * m_Size[1];
+    auto               at = [](std::int64_t v, std::int64_t size) { return std::clamp<std::int64_t>(v, 0, size - 1); };
+    const int *        radius = kernels.radius;
+    std::int64_t       xyz[3];
+    Unkey(m_Keys[i], xyz);
+    // Voxels beyond the image take the gradient of the nearest image voxel.
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      xyz[d] = at(xyz[d], m_Size[d]);
+    }
+    for (int a = -radius[0]; a <= radius[0]; ++a)
+    {
+      xs[static_cast<std::size_t>(a + radius[0])] = at(xyz[0] + a, m_Size[0]);
+    }
+    double gradient[3] = { 0.0, 0.0, 0.0 };
+    for (int c = -radius[2]; c <= radius[2]; ++c)
+    {
+      const std::int64_t z = at(xyz[2] + c, m_Size[2]);
+      const auto         kc = static_cast<std::size_t>(c + radius[2]);
+      for (int b = -radius[1]; b <= radius[1]; ++b)
+      {
+        const auto * row = buffer + z * sxy + at(xyz[1] + b, m_Size[1]) * sx;
+        double       rowSmooth = 0.0;
+        double       rowDerivative = 0.0;
+        for (std::size_t a = 0; a < xs.size(); ++a)
+        {
+          const auto value = static_cast<double>(row[xs[a]]);
+          rowSmooth += kernels.smooth[0][a] * value;
+          rowDerivative += kernels.derivative[0][a] * value;
+        }
+        const auto kb = static_cast<std::size_t>(b + radius[1]);
+        gradient[0] += kernels.smooth[1][kb] * kernels.smooth[2][kc] * rowDerivative;
+        gradient[1] += kernels.derivative[1][kb] * kernels.smooth[2][kc] * rowSmooth;
+        gradient[2] += kernels.smooth[1][kb] * kernels.derivative[2][kc] * rowSmooth;
+      }
+    }
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      // Per millimetre along the image axis -> per voxel.
+      m_Gradients[i][d] = gradient[d] * image->GetSpacing()[d];
+    }
+  }
+
   std::int64_t
   Key(std::int64_t x, std::int64_t y, std::int64_t z) const
   {
@@ -305,35 +331,24 @@ private:
   std::vector<Vec3>         m_Gradients;
 };
 
-/** How the nodes move (thesis section 3.2). */
-enum class SurfaceNetsRelaxationKind : std::uint8_t
-{
-  None,      ///< nodes stay where the net put them
-  Averaging, ///< SNA: to the average of the linked nodes (eq. 3.1-3.2)
-  Gradient,  ///< along the gradient to the iso-surface (eq. 3.3-3.4)
-  Combined   ///< SNERT: averaging within the iso-surface plus the gradient step (eq. 3.5-3.6)
-};
-
+/** How RelaxSurfaceNet moves the nodes (thesis section 3.2). `kind` is the filter's
+ * Relaxation: None (and Automatic, which the filter resolves before it relaxes) leaves
+ * the nodes where the net put them; Averaging is SNA (eq. 3.1-3.2), Gradient the step
+ * to the iso-surface (eq. 3.3-3.4), Combined SNERT (eq. 3.5-3.6). */
 struct SurfaceNetsRelaxationParameters
 {
-  SurfaceNetsRelaxationKind kind{ SurfaceNetsRelaxationKind::Combined };
-  unsigned int              maximumNumberOfIterations{ 20 };
-  double                    convergenceThreshold{ 1e-3 }; ///< largest relocation (voxels) that ends the iterations
-  double                    smoothingWeight{ 1.0 };       ///< weight of the averaging vector
-  double                    projectionWeight{ 1.0 };      ///< weight of the step to the iso-surface
-  bool                      sequential{ false };          ///< average, then project, within each iteration (3.2.4)
+  SurfaceNetsImageToMeshFilterEnums::Relaxation kind{ SurfaceNetsImageToMeshFilterEnums::Relaxation::Combined };
+  unsigned int                                  maximumNumberOfIterations{ 20 };
+  double convergenceThreshold{ 1e-3 }; ///< largest relocation (voxels) that ends the iterations
+  double smoothingWeight{ 1.0 };       ///< weight of the averaging vector
+  double projectionWeight{ 1.0 };      ///< weight of the step to the iso-surface
+  bool   sequential{ false };          ///< average, then project, within each iteration (3.2.4)
   /** The gradient is the sampler's central differences: cache them, with the voxel
    * values, at the 8 corners of each node's cell (set by the filter). */
   bool                 centralDifferences{ true };
   double               isoValue{ 0.0 };
   Matrix<double, 3, 3> indexToPhysical; ///< direction * diag(spacing)
   unsigned int         numberOfWorkUnits{ 0 };
-};
-
-struct SurfaceNetsRelaxationResult
-{
-  unsigned int iterations{ 0 };
-  double       lastMaximumRelocation{ 0.0 };
 };
 
 /** Scale d so that p + d stays in the box [lower, upper] (thesis eq. 3.2, the
@@ -384,38 +399,105 @@ struct SurfaceNetsCellCache
   bool                      centralDifferences{ false };
 };
 
-/** Stage 3 of SurfaceNets: relax the nodes with batch (Jacobi) updates until the
- * largest relocation falls below the threshold or the iteration limit is reached.
- * Vectors are built in physical space (the projection on the plane
- * perpendicular to the gradient needs true angles), constrained in index space
- * (where a cell is a unit cube). `gradient(p, node)` returns dI/d(index).
- * Deterministic for any number of threads. `cellCache`: see SurfaceNetsCellCache.
+/** \brief Stage 3 of SurfaceNets, the relaxation of the nodes (thesis 3.2), as its
+ * steps: the cell sampling, the cell cache, one SNERT step (eq. 3.5-3.6), the move of
+ * one node, and the iterations until convergence. RelaxSurfaceNet runs it.
+ *
+ * The updates are batch (Jacobi) updates: every node moves from the positions of the
+ * previous iteration, until the largest relocation falls below the threshold or the
+ * iteration limit is reached. Vectors are built in physical space (the projection on
+ * the plane perpendicular to the gradient needs true angles), constrained in index
+ * space (where a cell is a unit cube). `gradient(p, node)` returns dI/d(index).
+ * Deterministic for any number of threads.
+ *
+ * The per-node steps run millions of times an iteration: those marked
+ * MESHEXTRACTION_ALWAYS_INLINE are inlined into the loop even where GCC would keep
+ * them as calls, which pass their vectors through memory.
  * \ingroup MeshExtraction */
 template <typename TSampler, typename TGradient>
-SurfaceNetsRelaxationResult
-RelaxSurfaceNet(SurfaceNet &                            net,
-                const TSampler *                        sampler,
-                TGradient &&                            gradient,
-                const SurfaceNetsRelaxationParameters & parameters,
-                const std::function<void(double)> &     progress = nullptr,
-                SurfaceNetsCellCache *                  cellCache = nullptr)
+class SurfaceNetsRelaxer
 {
-  SurfaceNetsRelaxationResult result;
-  if (parameters.kind == SurfaceNetsRelaxationKind::None || parameters.maximumNumberOfIterations == 0)
+public:
+  /** `sampler` may be null for Averaging only; `cellCache`: see SurfaceNetsCellCache. */
+  SurfaceNetsRelaxer(SurfaceNet &                            net,
+                     const TSampler *                        sampler,
+                     TGradient &                             gradient,
+                     const SurfaceNetsRelaxationParameters & parameters,
+                     SurfaceNetsCellCache *                  cellCache)
+      : m_Net(net)
+      , m_Sampler(sampler)
+      , m_Gradient(gradient)
+      , m_Parameters(parameters)
+      , m_UseGradient(parameters.kind != SurfaceNetsImageToMeshFilterEnums::Relaxation::Averaging)
+      , m_UseAveraging(parameters.kind != SurfaceNetsImageToMeshFilterEnums::Relaxation::Gradient)
+      , m_Inverse(parameters.indexToPhysical.GetInverse())
+      , m_M(parameters.indexToPhysical)
+      , m_Minv(m_Inverse)
+      , m_MinvT(Matrix<double, 3, 3>(m_Inverse.GetTranspose()))
+      , m_W(m_Inverse * Matrix<double, 3, 3>(m_Inverse.GetTranspose()))
+      , m_NumberOfNodes(net.positions.size())
+      , m_Next(m_NumberOfNodes)
+      , m_NumberOfBlocks((m_NumberOfNodes + BlockSize - 1) / BlockSize)
+      , m_BlockMaximum(m_NumberOfBlocks)
+      , m_CellCache(cellCache)
+      , m_Cache(cellCache != nullptr ? cellCache->entries : m_LocalCache)
+      , m_Size(sampler != nullptr ? sampler->GetSize() : nullptr)
+      , m_Sy(m_Size != nullptr ? m_Size[0] : 0)
+      , m_Sz(m_Size != nullptr ? m_Size[0] * m_Size[1] : 0)
   {
+    double smallestSpacing = std::numeric_limits<double>::max();
+    m_CellDiagonal = 0.0;
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      const double length = std::sqrt(m_M(0, c) * m_M(0, c) + m_M(1, c) * m_M(1, c) + m_M(2, c) * m_M(2, c));
+      smallestSpacing = std::min(smallestSpacing, length);
+      m_CellDiagonal += length * length;
+    }
+    m_CellDiagonal = std::sqrt(m_CellDiagonal);
+    m_H = 0.5 * smallestSpacing;
+  }
+  SurfaceNetsRelaxer(const SurfaceNetsRelaxer &) = delete;
+  SurfaceNetsRelaxer &
+  operator=(const SurfaceNetsRelaxer &) = delete;
+
+  /** The iterations: each moves every node once, until none moved more than the
+   * convergence threshold or the iteration limit is reached. `progress` gets the
+   * fraction of the limit done. */
+  SurfaceNetsRelaxationResult
+  Run(const std::function<void(double)> & progress)
+  {
+    SurfaceNetsRelaxationResult result;
+    this->PrepareCellCache();
+    // A node that has left its own cell (the high-quality mode lets it, by a fraction
+    // of a voxel) takes the cell it is in now: see FollowNode. Central differences
+    // only (the Gaussian gradients are known at the corners of the net's own cells).
+    m_FollowCell = m_Sampler != nullptr && m_UseGradient && m_Parameters.centralDifferences && !m_Cache.empty();
+    for (unsigned int iteration = 0; iteration < m_Parameters.maximumNumberOfIterations; ++iteration)
+    {
+      result.iterations = iteration + 1;
+      result.lastMaximumRelocation = this->Iterate();
+      if (progress)
+      {
+        progress(static_cast<double>(iteration + 1) / m_Parameters.maximumNumberOfIterations);
+      }
+      if (result.lastMaximumRelocation < m_Parameters.convergenceThreshold)
+      {
+        break;
+      }
+    }
     return result;
   }
-  const bool useGradient = parameters.kind != SurfaceNetsRelaxationKind::Averaging;
-  const bool useAveraging = parameters.kind != SurfaceNetsRelaxationKind::Gradient;
-  if (useGradient && sampler == nullptr)
-  {
-    itkGenericExceptionMacro("SurfaceNets: gradient relaxation needs a greyscale image.");
-  }
-  // The matrices as plain 3x3 products the compiler inlines (itk::Matrix's are calls).
-  struct Mat3
+
+private:
+  using Entry = SurfaceNetsCellCache::Entry;
+  using PixelType = typename TSampler::PixelType;
+  static constexpr std::size_t BlockSize = 2048;
+
+  /** A 3x3 matrix whose products the compiler inlines (itk::Matrix's are calls). */
+  struct Matrix3
   {
     double m[3][3];
-    explicit Mat3(const Matrix<double, 3, 3> & A)
+    explicit Matrix3(const Matrix<double, 3, 3> & A)
     {
       for (unsigned int r = 0; r < 3; ++r)
       {
@@ -440,231 +522,226 @@ RelaxSurfaceNet(SurfaceNet &                            net,
       return m[r][c];
     }
   };
-  const Matrix<double, 3, 3> matrix = parameters.indexToPhysical;
-  const Matrix<double, 3, 3> inverse(matrix.GetInverse());
-  const Mat3                 M(matrix);
-  const Mat3                 Minv(inverse);
-  const Mat3                 MinvT(Matrix<double, 3, 3>(inverse.GetTranspose()));
-  // W = M^-1 M^-T maps an index-space gradient G to t = M^-1 g, the index displacement
-  // along the physical gradient g = M^-T G, with |g|^2 = G.t.
-  const Mat3 W(inverse * Matrix<double, 3, 3>(inverse.GetTranspose()));
-  double     smallestSpacing = std::numeric_limits<double>::max();
-  double     cellDiagonal = 0.0;
-  for (unsigned int c = 0; c < 3; ++c)
+
+  // ---------------------------------------------------------------------------------
+  // The iterations and the move of one node.
+
+  /** One iteration, in parallel over blocks of nodes, each moved from the previous
+   * positions; returns the largest relocation (voxels). */
+  double
+  Iterate()
   {
-    const double length = std::sqrt(M(0, c) * M(0, c) + M(1, c) * M(1, c) + M(2, c) * M(2, c));
-    smallestSpacing = std::min(smallestSpacing, length);
-    cellDiagonal += length * length;
+    ParallelForBlocks(
+      m_NumberOfNodes,
+      BlockSize,
+      [this](std::size_t begin, std::size_t end, std::size_t block) {
+        double largest = 0.0;
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          const Vec3 moved = this->MoveNode(i);
+          largest = std::max(largest, SquaredNorm(moved - m_Net.positions[i]));
+          m_Next[i] = moved;
+        }
+        m_BlockMaximum[block] = std::sqrt(largest);
+      },
+      m_Parameters.numberOfWorkUnits);
+    m_Net.positions.swap(m_Next);
+    return m_NumberOfBlocks ? *std::max_element(m_BlockMaximum.begin(), m_BlockMaximum.end()) : 0.0;
   }
-  cellDiagonal = std::sqrt(cellDiagonal);
-  const double h = 0.5 * smallestSpacing; // finite-difference step along the gradient (mm)
 
-  const std::size_t      numberOfNodes = net.positions.size();
-  LargeBlockVector<Vec3> next(numberOfNodes);
-  constexpr std::size_t  BlockSize = 2048;
-  const std::size_t      numberOfBlocks = (numberOfNodes + BlockSize - 1) / BlockSize;
-  std::vector<double>    blockMaximum(numberOfBlocks);
-
-  // Each node's cell: the 8 corner values and (central differences) corner
-  // gradients, read once. Inside its cell a node's value, gradient and slope are then
-  // plain arithmetic on these (trilinear interpolation, and the trilinear field's
-  // exact derivative along n), not 9 interpolations from the image per iteration.
-  // Stored as the trilinear fields' coefficients, f(u, v, w) = c0 + c1 u + c2 v + c3 w
-  // + c4 uv + c5 uw + c6 vw + c7 uvw in the cell's local coordinates: a value and its
-  // three partial derivatives then cost 16 multiply-adds.
-  // With the node's box and its cell's corner, so that an iteration reads one
-  // record per node (besides the positions) instead of several arrays.
-  auto toCoefficients = [](const double f[8], float c[8]) {
-    c[0] = static_cast<float>(f[0]);
-    c[1] = static_cast<float>(f[1] - f[0]);
-    c[2] = static_cast<float>(f[2] - f[0]);
-    c[3] = static_cast<float>(f[4] - f[0]);
-    c[4] = static_cast<float>(f[3] - f[2] - f[1] + f[0]);
-    c[5] = static_cast<float>(f[5] - f[4] - f[1] + f[0]);
-    c[6] = static_cast<float>(f[6] - f[4] - f[2] + f[0]);
-    c[7] = static_cast<float>(f[7] - f[6] - f[5] + f[4] - f[3] + f[2] + f[1] - f[0]);
-  };
-  // 200 bytes a node, all written below; kept in `cellCache` from an earlier call
-  // on the same net, where only the boxes are refreshed.
-  UninitializedArray<SurfaceNetsCellCache::Entry>   localCache;
-  UninitializedArray<SurfaceNetsCellCache::Entry> & cache = cellCache != nullptr ? cellCache->entries : localCache;
-  const std::int64_t *                              size = sampler != nullptr ? sampler->GetSize() : nullptr;
-  const std::int64_t                                sy = size != nullptr ? size[0] : 0;
-  const std::int64_t                                sz = size != nullptr ? size[0] * size[1] : 0;
-  // The 4x4x4 voxels around a cell (its corners and their central-difference
-  // neighbours) are read straight from the buffer when all are inside the image.
-  auto isInterior = [size](const SurfaceCell & c) {
-    return c.x >= 1 && c.y >= 1 && c.z >= 1 && c.x + 2 < size[0] && c.y + 2 < size[1] && c.z + 2 < size[2];
-  };
-  // An entry's fields for cell c (its box is left as it is).
-  auto fillEntry = [&](const SurfaceCell & c, SurfaceNetsCellCache::Entry & entry) {
-    const bool interior = isInterior(c);
-    double     corner[8];
-    double     cornerGradient[3][8] = {};
-    // The corners and central differences inside the image, straight from the buffer.
-    auto readInterior = [&](const auto * b) {
-      for (unsigned int k = 0; k < 8; ++k)
-      {
-        const auto * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy + (k & 1);
-        corner[k] = static_cast<double>(v[0]);
-        if (parameters.centralDifferences)
-        {
-          cornerGradient[0][k] = 0.5 * (static_cast<double>(v[1]) - static_cast<double>(v[-1]));
-          cornerGradient[1][k] = 0.5 * (static_cast<double>(v[sy]) - static_cast<double>(v[-sy]));
-          cornerGradient[2][k] = 0.5 * (static_cast<double>(v[sz]) - static_cast<double>(v[-sz]));
-        }
-      }
-    };
-#if defined(__SSE2__)
-    // A float image: two corners (x and x + 1) at a time, in double precision as
-    // readInterior, so the same values, from four loads of two voxels per corner row.
-    auto readInteriorPairs = [&](const float * b) {
-      auto pair = [](const float * v) {
-        return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(v))));
-      };
-      const __m128d half = _mm_set1_pd(0.5);
-      for (unsigned int k = 0; k < 8; k += 2)
-      {
-        const float * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy;
-        _mm_storeu_pd(corner + k, pair(v));
-        if (parameters.centralDifferences)
-        {
-          _mm_storeu_pd(cornerGradient[0] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + 1), pair(v - 1))));
-          _mm_storeu_pd(cornerGradient[1] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sy), pair(v - sy))));
-          _mm_storeu_pd(cornerGradient[2] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sz), pair(v - sz))));
-        }
-      }
-    };
-#endif
-    if (interior)
+  /** Node i's new position: SNA's averaging step (eq. 3.1-3.2), or the SNERT step from
+   * the cache where the node is inside its entry's cell, or else the general step. */
+  MESHEXTRACTION_ALWAYS_INLINE Vec3
+  MoveNode(std::size_t i)
+  {
+    const Vec3 & p = m_Net.positions[i];
+    const Vec3   a = this->AveragingVector(i);
+    Vec3         moved = p;
+    if (!m_UseGradient)
     {
-      const auto * b = sampler->GetBufferPointer() + (c.z * sz + c.y * sy + c.x);
-#if defined(__SSE2__)
-      if constexpr (std::is_same<std::remove_cv_t<std::remove_pointer_t<decltype(b)>>, float>::value)
-      {
-        readInteriorPairs(b);
-      }
-      else
-      {
-        readInterior(b);
-      }
-#else
-      readInterior(b);
-#endif
+      moved += ConstrainToBox(p, a * m_Parameters.smoothingWeight, m_Net.boxLower[i], m_Net.boxUpper[i]);
+    }
+    else if (Vec3 step;
+             !m_Parameters.sequential && (this->CachedStep(p, i, a, step) ||
+                                          (m_FollowCell && this->FollowNode(p, i) && this->CachedStep(p, i, a, step))))
+    {
+      moved += ConstrainToBox(p, step, m_Cache[i].lower, m_Cache[i].upper);
     }
     else
     {
-      for (unsigned int k = 0; k < 8; ++k)
-      {
-        const auto [x, y, z] = CornerVoxel(c, k);
-        corner[k] = sampler->Value(x, y, z);
-        if (parameters.centralDifferences)
-        {
-          cornerGradient[0][k] = 0.5 * (sampler->Value(x + 1, y, z) - sampler->Value(x - 1, y, z));
-          cornerGradient[1][k] = 0.5 * (sampler->Value(x, y + 1, z) - sampler->Value(x, y - 1, z));
-          cornerGradient[2][k] = 0.5 * (sampler->Value(x, y, z + 1) - sampler->Value(x, y, z - 1));
-        }
-      }
+      this->GeneralStep(p, i, a, moved);
     }
-    entry.corner[0] = c.x;
-    entry.corner[1] = c.y;
-    entry.corner[2] = c.z;
-    toCoefficients(corner, entry.value);
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      toCoefficients(cornerGradient[d], entry.gradient[d]);
-    }
-  };
-  if (sampler != nullptr && useGradient && cellCache != nullptr && cache.size() == numberOfNodes &&
-      cellCache->centralDifferences == parameters.centralDifferences)
-  {
-    for (std::size_t i = 0; i < numberOfNodes; ++i)
-    {
-      cache[i].lower = net.boxLower[i];
-      cache[i].upper = net.boxUpper[i];
-    }
+    return moved;
   }
-  else if (sampler != nullptr && useGradient)
+
+  /** a_p: from node i to the average of its linked nodes (eq. 3.1). */
+  MESHEXTRACTION_ALWAYS_INLINE Vec3
+  AveragingVector(std::size_t i) const
   {
-    cache.Allocate(numberOfNodes);
-    if (cellCache != nullptr)
+    const Vec3 & p = m_Net.positions[i];
+    Vec3         average = MakeVec3(0, 0, 0);
+    const auto   first = m_Net.neighborStart[i];
+    const auto   last = m_Net.neighborStart[i + 1];
+    for (auto k = first; k < last; ++k)
     {
-      cellCache->centralDifferences = parameters.centralDifferences;
+      average += m_Net.positions[m_Net.neighbors[k]];
     }
-    ParallelForBlocks(
-      numberOfNodes,
-      BlockSize,
-      [&](std::size_t begin, std::size_t end, std::size_t) {
-        // Those of the cell PrefetchAhead nodes on are requested now: the nodes come
-        // in cell order, in a pattern of 16 short rows that the hardware's own
-        // prefetching does not foresee. SNERT at 256^3 (SurfaceNets/SNERT, three
-        // alternating processes) took 95-101 ms on 1 thread and 57-58 on 2 without
-        // this, 90-93 and 53-56.5 with it.
-        constexpr std::size_t PrefetchAhead = 16;
-        for (std::size_t i = begin; i < end; ++i)
-        {
-          if (i + PrefetchAhead < end)
-          {
-            const SurfaceCell & ahead = net.cells[net.nodeCell[i + PrefetchAhead]];
-            if (isInterior(ahead))
-            {
-              const auto * b = sampler->GetBufferPointer() + (ahead.z * sz + ahead.y * sy + ahead.x);
-              for (std::int64_t dz = -1; dz <= 2; ++dz)
-              {
-                for (std::int64_t dy = -1; dy <= 2; ++dy)
-                {
-                  PrefetchForReading(reinterpret_cast<std::uintptr_t>(b + dz * sz + dy * sy - 1), 4 * sizeof(*b));
-                }
-              }
-            }
-          }
-          fillEntry(net.cells[net.nodeCell[i]], cache[i]);
-          cache[i].lower = net.boxLower[i];
-          cache[i].upper = net.boxUpper[i];
-        }
-      },
-      parameters.numberOfWorkUnits);
+    return (last > first) ? average * (1.0 / (last - first)) - p : MakeVec3(0, 0, 0);
   }
-  // A node that has left its own cell (the high-quality mode lets it, by a fraction of
-  // a voxel) takes the cell it is in now: its entry is refilled for that cell, and the
-  // steps stay the cached arithmetic instead of nine interpolations from the image.
-  // Central differences only (the Gaussian gradients are known at the corners of the
-  // net's own cells).
-  const bool followCell = sampler != nullptr && useGradient && parameters.centralDifferences && !cache.empty();
-  auto       moveEntryTo = [&](const Vec3 & p, std::size_t node) -> bool {
-    constexpr double limit = 1 << 30;
-    if (!(std::abs(p[0]) < limit && std::abs(p[1]) < limit && std::abs(p[2]) < limit))
+
+  // ---------------------------------------------------------------------------------
+  // One SNERT step (eq. 3.5-3.6).
+
+  /** The combined step (eq. 3.5-3.6) of a node inside its entry's cell, from the cache,
+   * without normalising the gradient. With n = g/|g|, the projection on the tangent
+   * plane is M^-1 (M a - n n.(M a)) = a - t (G.a)/|g|^2, since n.(M a) = (M^T g).a/|g|
+   * = G.a/|g|; and the step to the iso-surface, M^-1 (n d) with d = (iso - I)/slope and
+   * slope = dI.(M^-1 n) = dI.t/|g|, is t (iso - I)/(dI.t). The same vectors as
+   * GeneralStep, with no square root and two divisions. False (d not set) where the
+   * node is not in its entry's cell. */
+  MESHEXTRACTION_ALWAYS_INLINE bool
+  CachedStep(const Vec3 & p, std::size_t node, const Vec3 & a, Vec3 & d) const
+  {
+    CellSample sample;
+    if (!this->SampleCell(p, node, sample))
     {
       return false;
     }
-    SurfaceCell c{};
-    c.x = static_cast<std::int32_t>(std::floor(p[0]));
-    c.y = static_cast<std::int32_t>(std::floor(p[1]));
-    c.z = static_cast<std::int32_t>(std::floor(p[2]));
-    fillEntry(c, cache[node]);
+    const Vec3 & G = sample.G;
+    const Vec3   t = m_W * G;
+    const double g2 = Dot(G, t);
+    d = m_UseAveraging ? a * m_Parameters.smoothingWeight : MakeVec3(0, 0, 0);
+    if (!(g2 > 0.0))
+    {
+      return true; // no gradient: no projection, no step (as n = 0 in GeneralStep)
+    }
+    double       coefficient = m_UseAveraging ? -Dot(G, a) / g2 * m_Parameters.smoothingWeight : 0.0;
+    const double slope = Dot(sample.dI, t); // |g| times the slope along n
+    if (std::abs(slope) > 1e-3 * g2)
+    {
+      double q = (m_Parameters.isoValue - sample.value) / slope; // the distance is q |g|
+      if (q * q * g2 > m_CellDiagonal * m_CellDiagonal)
+      {
+        q = std::copysign(m_CellDiagonal / std::sqrt(g2), q);
+      }
+      coefficient += q * m_Parameters.projectionWeight;
+    }
+    d += t * coefficient;
     return true;
-  };
+  }
 
-  // A node's value I, gradient G = dI/d(index) and the trilinear field's exact
-  // derivative dI at p, from the node's cache entry; false (nothing computed)
-  // without a cache or when p is outside the entry's cell.
+  /** The general step, from the gradient of any method and the image: the averaging
+   * vector projected on the plane perpendicular to the gradient (eq. 3.5) plus the
+   * step along the gradient to the iso-surface (eq. 3.6); or, sequential (3.2.4),
+   * first the one and then the other from where it ended. Adds the constrained steps
+   * to `moved`. */
+  MESHEXTRACTION_ALWAYS_INLINE void
+  GeneralStep(const Vec3 & p, std::size_t i, const Vec3 & a, Vec3 & moved) const
+  {
+    Vec3         n;
+    const double distance = this->DistanceToIsoSurface(p, static_cast<std::uint32_t>(i), n);
+    const Vec3   tangential = m_UseAveraging ? this->TangentialAveraging(a, n) : MakeVec3(0, 0, 0);
+    if (m_Parameters.sequential)
+    {
+      moved += ConstrainToBox(moved, tangential, m_Net.boxLower[i], m_Net.boxUpper[i]);
+      Vec3         n2;
+      const double d2 = this->DistanceToIsoSurface(moved, static_cast<std::uint32_t>(i), n2);
+      moved += ConstrainToBox(
+        moved, m_Minv * (n2 * (d2 * m_Parameters.projectionWeight)), m_Net.boxLower[i], m_Net.boxUpper[i]);
+    }
+    else
+    {
+      const Vec3 d = tangential + m_Minv * (n * (distance * m_Parameters.projectionWeight)); // eq. 3.6
+      moved += ConstrainToBox(p, d, m_Net.boxLower[i], m_Net.boxUpper[i]);
+    }
+  }
+
+  /** Eq. 3.5: the averaging vector a (index space) without its component along the
+   * unit physical gradient n, weighted. */
+  MESHEXTRACTION_ALWAYS_INLINE Vec3
+  TangentialAveraging(const Vec3 & a, const Vec3 & n) const
+  {
+    const Vec3 aPhysical = m_M * a;
+    return m_Minv * (aPhysical - n * Dot(n, aPhysical)) * m_Parameters.smoothingWeight;
+  }
+
+  /** The signed distance (mm) from p along the unit physical gradient n to the
+   * iso-surface, from a linear model of the image along n (thesis 3.2.3), clamped to
+   * a cell's diagonal; n is set (zero where there is no gradient). From the cache
+   * where p is in the node's entry's cell, else from the gradient and the image. */
+  double
+  DistanceToIsoSurface(const Vec3 & p, std::uint32_t node, Vec3 & n) const
+  {
+    if (CellSample sample; this->SampleCell(p, node, sample))
+    {
+      const Vec3   g = m_MinvT * sample.G;
+      const double magnitude = Norm(g);
+      if (!(magnitude > 0.0))
+      {
+        n.Fill(0.0);
+        return 0.0;
+      }
+      n = g * (1.0 / magnitude);
+      // The exact derivative of the trilinear field along n (M^-1 n: index displacement per mm).
+      const double slope = Dot(sample.dI, m_Minv * n);
+      if (!(std::abs(slope) > 1e-3 * magnitude))
+      {
+        return 0.0;
+      }
+      return std::clamp((m_Parameters.isoValue - sample.value) / slope, -m_CellDiagonal, m_CellDiagonal);
+    }
+    const Vec3   g = m_MinvT * m_Gradient(p, node);
+    const double magnitude = Norm(g);
+    if (!(magnitude > 0.0))
+    {
+      n.Fill(0.0);
+      return 0.0;
+    }
+    n = g * (1.0 / magnitude);
+    const Vec3   step = m_Minv * (n * m_H);
+    const double value = m_Sampler->Interpolate(p);
+    // The image's own slope along n (a smoothed gradient may disagree with it).
+    const double slope = (m_Sampler->Interpolate(p + step) - m_Sampler->Interpolate(p - step)) / (2.0 * m_H);
+    if (!(std::abs(slope) > 1e-3 * magnitude))
+    {
+      return 0.0; // flat along n: no reliable step
+    }
+    return std::clamp((m_Parameters.isoValue - value) / slope, -m_CellDiagonal, m_CellDiagonal);
+  }
+
+  // ---------------------------------------------------------------------------------
+  // The cell sampling: a node's value, gradient and slope from its cell's 8 corners.
+  //
+  // Each node's cell: the 8 corner values and (central differences) corner gradients,
+  // read once. Inside its cell a node's value, gradient and slope are then plain
+  // arithmetic on these (trilinear interpolation, and the trilinear field's exact
+  // derivative along n), not 9 interpolations from the image per iteration. Stored as
+  // the trilinear fields' coefficients, f(u, v, w) = c0 + c1 u + c2 v + c3 w + c4 uv
+  // + c5 uw + c6 vw + c7 uvw in the cell's local coordinates: a value and its three
+  // partial derivatives then cost 16 multiply-adds.
+
+  /** A node's value I, gradient G = dI/d(index) and the trilinear field's exact
+   * derivative dI at a point. */
   struct CellSample
   {
     double value;
     Vec3   G;
     Vec3   dI;
   };
-  // (Both per-node steps below are forced inline: GCC 12 kept them as calls, which
-  // pass their vectors through memory; inlined, SNERT gained 1-2 % at 256^3.)
-  auto sampleCell = [&](const Vec3 & p, std::size_t node, CellSample & sample) MESHEXTRACTION_ALWAYS_INLINE -> bool {
-    if (cache.empty())
+
+  /** The sample at p from node's cache entry; false (nothing computed) without a
+   * cache or when p is outside the entry's cell. */
+  MESHEXTRACTION_ALWAYS_INLINE bool
+  SampleCell(const Vec3 & p, std::size_t node, CellSample & sample) const
+  {
+    if (m_Cache.empty())
     {
       return false;
     }
-    const SurfaceNetsCellCache::Entry & cc = cache[node];
-    const double                        u = p[0] - cc.corner[0];
-    const double                        v = p[1] - cc.corner[1];
-    const double                        w = p[2] - cc.corner[2];
+    const Entry & cc = m_Cache[node];
+    const double  u = p[0] - cc.corner[0];
+    const double  v = p[1] - cc.corner[1];
+    const double  w = p[2] - cc.corner[2];
     if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0 && w >= 0.0 && w <= 1.0))
     {
       return false;
@@ -692,171 +769,303 @@ RelaxSurfaceNet(SurfaceNet &                            net,
     float sum[4];
     _mm_storeu_ps(sum, _mm_add_ps(_mm_add_ps(r0, r1), _mm_add_ps(r2, r3)));
     sample.value = sum[0];
-    sample.G =
-      parameters.centralDifferences ? MakeVec3(sum[1], sum[2], sum[3]) : gradient(p, static_cast<std::uint32_t>(node));
+    sample.G = m_Parameters.centralDifferences ? MakeVec3(sum[1], sum[2], sum[3])
+                                               : m_Gradient(p, static_cast<std::uint32_t>(node));
 #else
     auto field = [&](const float * k) {
       return k[0] + k[1] * u + k[2] * v + k[3] * w + k[4] * uv + k[5] * uw + k[6] * vw + k[7] * uvw;
     };
     sample.value = field(f);
-    sample.G = parameters.centralDifferences
+    sample.G = m_Parameters.centralDifferences
                  ? MakeVec3(field(cc.gradient[0]), field(cc.gradient[1]), field(cc.gradient[2]))
-                 : gradient(p, static_cast<std::uint32_t>(node));
+                 : m_Gradient(p, static_cast<std::uint32_t>(node));
 #endif
     sample.dI = MakeVec3(f[1] + f[4] * v + f[5] * w + f[7] * vw,
                          f[2] + f[4] * u + f[6] * w + f[7] * uw,
                          f[3] + f[5] * u + f[6] * v + f[7] * uv);
     return true;
-  };
+  }
 
-  // The step to the iso-surface from p along the unit physical gradient n (mm),
-  // from a linear model of the image along n (thesis 3.2.3).
-  auto projection = [&](const Vec3 & p, std::uint32_t node, Vec3 & n) -> double {
-    if (CellSample sample; sampleCell(p, node, sample))
-    {
-      const Vec3   g = MinvT * sample.G;
-      const double magnitude = Norm(g);
-      if (!(magnitude > 0.0))
-      {
-        n.Fill(0.0);
-        return 0.0;
-      }
-      n = g * (1.0 / magnitude);
-      // The exact derivative of the trilinear field along n (M^-1 n: index displacement per mm).
-      const double slope = Dot(sample.dI, Minv * n);
-      if (!(std::abs(slope) > 1e-3 * magnitude))
-      {
-        return 0.0;
-      }
-      return std::clamp((parameters.isoValue - sample.value) / slope, -cellDiagonal, cellDiagonal);
-    }
-    const Vec3   g = MinvT * gradient(p, node);
-    const double magnitude = Norm(g);
-    if (!(magnitude > 0.0))
-    {
-      n.Fill(0.0);
-      return 0.0;
-    }
-    n = g * (1.0 / magnitude);
-    const Vec3   step = Minv * (n * h);
-    const double value = sampler->Interpolate(p);
-    // The image's own slope along n (a smoothed gradient may disagree with it).
-    const double slope = (sampler->Interpolate(p + step) - sampler->Interpolate(p - step)) / (2.0 * h);
-    if (!(std::abs(slope) > 1e-3 * magnitude))
-    {
-      return 0.0; // flat along n: no reliable step
-    }
-    return std::clamp((parameters.isoValue - value) / slope, -cellDiagonal, cellDiagonal);
-  };
+  /** The trilinear field through 8 corner values (corner k at offset (k & 1,
+   * (k >> 1) & 1, (k >> 2) & 1)) as the coefficients c0 .. c7. */
+  static void
+  ToCoefficients(const double f[8], float c[8])
+  {
+    c[0] = static_cast<float>(f[0]);
+    c[1] = static_cast<float>(f[1] - f[0]);
+    c[2] = static_cast<float>(f[2] - f[0]);
+    c[3] = static_cast<float>(f[4] - f[0]);
+    c[4] = static_cast<float>(f[3] - f[2] - f[1] + f[0]);
+    c[5] = static_cast<float>(f[5] - f[4] - f[1] + f[0]);
+    c[6] = static_cast<float>(f[6] - f[4] - f[2] + f[0]);
+    c[7] = static_cast<float>(f[7] - f[6] - f[5] + f[4] - f[3] + f[2] + f[1] - f[0]);
+  }
 
-  // The combined step (eq. 3.5-3.6) of a node inside its entry's cell, from the cache,
-  // without normalising the gradient. With n = g/|g|, the projection on the tangent
-  // plane is M^-1 (M a - n n.(M a)) = a - t (G.a)/|g|^2, since n.(M a) = (M^T g).a/|g|
-  // = G.a/|g|; and the step to the iso-surface, M^-1 (n d) with d = (iso - I)/slope and
-  // slope = dI.(M^-1 n) = dI.t/|g|, is t (iso - I)/(dI.t). The same vectors as the
-  // general path below, with no square root and two divisions.
-  auto cachedStep = [&](const Vec3 & p, std::size_t node, const Vec3 & a, Vec3 & d)
-                      MESHEXTRACTION_ALWAYS_INLINE -> bool {
-    CellSample sample;
-    if (!sampleCell(p, node, sample))
+  /** An entry's fields for cell c: the coefficients of its value and (central
+   * differences) gradient fields, and its corner (its box is left as it is). */
+  void
+  FillEntry(const SurfaceCell & c, Entry & entry) const
+  {
+    double corner[8];
+    double cornerGradient[3][8] = {};
+    if (this->IsInterior(c))
+    {
+      this->ReadInteriorCorners(
+        m_Sampler->GetBufferPointer() + (c.z * m_Sz + c.y * m_Sy + c.x), corner, cornerGradient);
+    }
+    else
+    {
+      this->ReadCornersBeyondTheBorder(c, corner, cornerGradient);
+    }
+    entry.corner[0] = c.x;
+    entry.corner[1] = c.y;
+    entry.corner[2] = c.z;
+    ToCoefficients(corner, entry.value);
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      ToCoefficients(cornerGradient[d], entry.gradient[d]);
+    }
+  }
+
+  /** Whether the 4x4x4 voxels around a cell (its corners and their central-difference
+   * neighbours) are all inside the image: then they are read straight from the buffer. */
+  bool
+  IsInterior(const SurfaceCell & c) const
+  {
+    return c.x >= 1 && c.y >= 1 && c.z >= 1 && c.x + 2 < m_Size[0] && c.y + 2 < m_Size[1] && c.z + 2 < m_Size[2];
+  }
+
+  /** The corner values and central differences of an interior cell whose first corner
+   * is at b, straight from the buffer. */
+  void
+  ReadInteriorCorners(const PixelType * b, double corner[8], double cornerGradient[3][8]) const
+  {
+#if defined(__SSE2__)
+    if constexpr (std::is_same<PixelType, float>::value)
+    {
+      this->ReadInteriorCornerPairs(b, corner, cornerGradient);
+      return;
+    }
+#endif
+    const std::int64_t sy = m_Sy;
+    const std::int64_t sz = m_Sz;
+    for (unsigned int k = 0; k < 8; ++k)
+    {
+      const auto * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy + (k & 1);
+      corner[k] = static_cast<double>(v[0]);
+      if (m_Parameters.centralDifferences)
+      {
+        cornerGradient[0][k] = 0.5 * (static_cast<double>(v[1]) - static_cast<double>(v[-1]));
+        cornerGradient[1][k] = 0.5 * (static_cast<double>(v[sy]) - static_cast<double>(v[-sy]));
+        cornerGradient[2][k] = 0.5 * (static_cast<double>(v[sz]) - static_cast<double>(v[-sz]));
+      }
+    }
+  }
+
+#if defined(__SSE2__)
+  /** ReadInteriorCorners of a float image: two corners (x and x + 1) at a time, in
+   * double precision as the scalar loop, so the same values, from four loads of two
+   * voxels per corner row. */
+  void
+  ReadInteriorCornerPairs(const float * b, double corner[8], double cornerGradient[3][8]) const
+  {
+    const std::int64_t sy = m_Sy;
+    const std::int64_t sz = m_Sz;
+    auto               pair = [](const float * v) {
+      return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(v))));
+    };
+    const __m128d half = _mm_set1_pd(0.5);
+    for (unsigned int k = 0; k < 8; k += 2)
+    {
+      const float * v = b + ((k >> 2) & 1) * sz + ((k >> 1) & 1) * sy;
+      _mm_storeu_pd(corner + k, pair(v));
+      if (m_Parameters.centralDifferences)
+      {
+        _mm_storeu_pd(cornerGradient[0] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + 1), pair(v - 1))));
+        _mm_storeu_pd(cornerGradient[1] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sy), pair(v - sy))));
+        _mm_storeu_pd(cornerGradient[2] + k, _mm_mul_pd(half, _mm_sub_pd(pair(v + sz), pair(v - sz))));
+      }
+    }
+  }
+#endif
+
+  /** The corner values and central differences of a cell at the image's border,
+   * through the sampler (which extends the image beyond it). */
+  void
+  ReadCornersBeyondTheBorder(const SurfaceCell & c, double corner[8], double cornerGradient[3][8]) const
+  {
+    for (unsigned int k = 0; k < 8; ++k)
+    {
+      const auto [x, y, z] = CornerVoxel(c, k);
+      corner[k] = m_Sampler->Value(x, y, z);
+      if (m_Parameters.centralDifferences)
+      {
+        cornerGradient[0][k] = 0.5 * (m_Sampler->Value(x + 1, y, z) - m_Sampler->Value(x - 1, y, z));
+        cornerGradient[1][k] = 0.5 * (m_Sampler->Value(x, y + 1, z) - m_Sampler->Value(x, y - 1, z));
+        cornerGradient[2][k] = 0.5 * (m_Sampler->Value(x, y, z + 1) - m_Sampler->Value(x, y, z - 1));
+      }
+    }
+  }
+
+  // ---------------------------------------------------------------------------------
+  // The cell cache: one entry per node (its cell's fields, its corner and the node's
+  // box), so that an iteration reads one record per node (besides the positions)
+  // instead of several arrays.
+
+  /** With a gradient step: the entries of a `cellCache` made by an earlier call on
+   * the same net get the nodes' boxes anew; otherwise every entry is filled. */
+  void
+  PrepareCellCache()
+  {
+    if (m_Sampler == nullptr || !m_UseGradient)
+    {
+      return;
+    }
+    if (m_CellCache != nullptr && m_Cache.size() == m_NumberOfNodes &&
+        m_CellCache->centralDifferences == m_Parameters.centralDifferences)
+    {
+      this->RefreshBoxes();
+      return;
+    }
+    // 200 bytes a node, all written by FillCellCache.
+    m_Cache.Allocate(m_NumberOfNodes);
+    if (m_CellCache != nullptr)
+    {
+      m_CellCache->centralDifferences = m_Parameters.centralDifferences;
+    }
+    this->FillCellCache();
+  }
+
+  void
+  RefreshBoxes()
+  {
+    for (std::size_t i = 0; i < m_NumberOfNodes; ++i)
+    {
+      m_Cache[i].lower = m_Net.boxLower[i];
+      m_Cache[i].upper = m_Net.boxUpper[i];
+    }
+  }
+
+  /** Every node's entry for its own cell, in parallel. The voxels of the cell
+   * PrefetchAhead nodes on are requested from memory meanwhile: the nodes come in
+   * cell order, in a pattern of 16 short rows that the hardware's own prefetching
+   * does not foresee, so without the request the fill waits on memory. */
+  void
+  FillCellCache()
+  {
+    ParallelForBlocks(
+      m_NumberOfNodes,
+      BlockSize,
+      [this](std::size_t begin, std::size_t end, std::size_t) {
+        constexpr std::size_t PrefetchAhead = 16;
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          if (i + PrefetchAhead < end)
+          {
+            this->PrefetchCell(m_Net.cells[m_Net.nodeCell[i + PrefetchAhead]]);
+          }
+          this->FillEntry(m_Net.cells[m_Net.nodeCell[i]], m_Cache[i]);
+          m_Cache[i].lower = m_Net.boxLower[i];
+          m_Cache[i].upper = m_Net.boxUpper[i];
+        }
+      },
+      m_Parameters.numberOfWorkUnits);
+  }
+
+  /** Requests the 4x4x4 voxels FillEntry reads of an interior cell. */
+  void
+  PrefetchCell(const SurfaceCell & c) const
+  {
+    if (!this->IsInterior(c))
+    {
+      return;
+    }
+    const auto * b = m_Sampler->GetBufferPointer() + (c.z * m_Sz + c.y * m_Sy + c.x);
+    for (std::int64_t dz = -1; dz <= 2; ++dz)
+    {
+      for (std::int64_t dy = -1; dy <= 2; ++dy)
+      {
+        PrefetchForReading(reinterpret_cast<std::uintptr_t>(b + dz * m_Sz + dy * m_Sy - 1), 4 * sizeof(*b));
+      }
+    }
+  }
+
+  /** A node that has left its entry's cell takes the cell it is in now: its entry is
+   * refilled for that cell (its box kept), and its steps stay the cached arithmetic
+   * instead of nine interpolations from the image. False for a point too far out to
+   * name a cell. */
+  bool
+  FollowNode(const Vec3 & p, std::size_t node)
+  {
+    constexpr double limit = 1 << 30;
+    if (!(std::abs(p[0]) < limit && std::abs(p[1]) < limit && std::abs(p[2]) < limit))
     {
       return false;
     }
-    const Vec3 & G = sample.G;
-    const Vec3   t = W * G;
-    const double g2 = Dot(G, t);
-    d = useAveraging ? a * parameters.smoothingWeight : MakeVec3(0, 0, 0);
-    if (!(g2 > 0.0))
-    {
-      return true; // no gradient: no projection, no step (as n = 0 below)
-    }
-    double       coefficient = useAveraging ? -Dot(G, a) / g2 * parameters.smoothingWeight : 0.0;
-    const double slope = Dot(sample.dI, t); // |g| times the slope along n
-    if (std::abs(slope) > 1e-3 * g2)
-    {
-      double q = (parameters.isoValue - sample.value) / slope; // the distance is q |g|
-      if (q * q * g2 > cellDiagonal * cellDiagonal)
-      {
-        q = std::copysign(cellDiagonal / std::sqrt(g2), q);
-      }
-      coefficient += q * parameters.projectionWeight;
-    }
-    d += t * coefficient;
+    SurfaceCell c{};
+    c.x = static_cast<std::int32_t>(std::floor(p[0]));
+    c.y = static_cast<std::int32_t>(std::floor(p[1]));
+    c.z = static_cast<std::int32_t>(std::floor(p[2]));
+    this->FillEntry(c, m_Cache[node]);
     return true;
-  };
-
-  for (unsigned int iteration = 0; iteration < parameters.maximumNumberOfIterations; ++iteration)
-  {
-    ParallelForBlocks(
-      numberOfNodes,
-      BlockSize,
-      [&](std::size_t begin, std::size_t end, std::size_t block) {
-        double largest = 0.0;
-        for (std::size_t i = begin; i < end; ++i)
-        {
-          const Vec3 & p = net.positions[i];
-          Vec3         average = MakeVec3(0, 0, 0);
-          const auto   first = net.neighborStart[i];
-          const auto   last = net.neighborStart[i + 1];
-          for (auto k = first; k < last; ++k)
-          {
-            average += net.positions[net.neighbors[k]];
-          }
-          Vec3 a = (last > first) ? average * (1.0 / (last - first)) - p : MakeVec3(0, 0, 0);
-          Vec3 moved = p;
-          if (!useGradient)
-          {
-            moved += ConstrainToBox(p, a * parameters.smoothingWeight, net.boxLower[i], net.boxUpper[i]);
-          }
-          else if (Vec3 step;
-                   !parameters.sequential &&
-                   (cachedStep(p, i, a, step) || (followCell && moveEntryTo(p, i) && cachedStep(p, i, a, step))))
-          {
-            moved += ConstrainToBox(p, step, cache[i].lower, cache[i].upper);
-          }
-          else
-          {
-            Vec3         n;
-            const double distance = projection(p, static_cast<std::uint32_t>(i), n);
-            Vec3         tangential = MakeVec3(0, 0, 0);
-            if (useAveraging)
-            {
-              const Vec3 aPhysical = M * a;
-              tangential = Minv * (aPhysical - n * Dot(n, aPhysical)) * parameters.smoothingWeight; // eq. 3.5
-            }
-            if (parameters.sequential)
-            {
-              moved += ConstrainToBox(moved, tangential, net.boxLower[i], net.boxUpper[i]);
-              Vec3         n2;
-              const double d2 = projection(moved, static_cast<std::uint32_t>(i), n2);
-              moved += ConstrainToBox(
-                moved, Minv * (n2 * (d2 * parameters.projectionWeight)), net.boxLower[i], net.boxUpper[i]);
-            }
-            else
-            {
-              const Vec3 d = tangential + Minv * (n * (distance * parameters.projectionWeight)); // eq. 3.6
-              moved += ConstrainToBox(p, d, net.boxLower[i], net.boxUpper[i]);
-            }
-          }
-          largest = std::max(largest, SquaredNorm(moved - p));
-          next[i] = moved;
-        }
-        blockMaximum[block] = std::sqrt(largest);
-      },
-      parameters.numberOfWorkUnits);
-    net.positions.swap(next);
-    result.iterations = iteration + 1;
-    result.lastMaximumRelocation = numberOfBlocks ? *std::max_element(blockMaximum.begin(), blockMaximum.end()) : 0.0;
-    if (progress)
-    {
-      progress(static_cast<double>(iteration + 1) / parameters.maximumNumberOfIterations);
-    }
-    if (result.lastMaximumRelocation < parameters.convergenceThreshold)
-    {
-      break;
-    }
   }
-  return result;
+
+  SurfaceNet &                            m_Net;
+  const TSampler *                        m_Sampler;
+  TGradient &                             m_Gradient;
+  const SurfaceNetsRelaxationParameters & m_Parameters;
+  const bool                              m_UseGradient;
+  const bool                              m_UseAveraging;
+  bool                                    m_FollowCell{ false };
+
+  // Geometry: M = indexToPhysical, its inverse and inverse transpose, and W = M^-1 M^-T,
+  // which maps an index-space gradient G to t = M^-1 g, the index displacement along
+  // the physical gradient g = M^-T G, with |g|^2 = G.t.
+  const Matrix<double, 3, 3> m_Inverse;
+  const Matrix3              m_M;
+  const Matrix3              m_Minv;
+  const Matrix3              m_MinvT;
+  const Matrix3              m_W;
+  double                     m_CellDiagonal; ///< mm: the longest step to the iso-surface
+  double                     m_H;            ///< mm: finite-difference step along the gradient
+
+  const std::size_t      m_NumberOfNodes;
+  LargeBlockVector<Vec3> m_Next; ///< the positions an iteration makes
+  const std::size_t      m_NumberOfBlocks;
+  std::vector<double>    m_BlockMaximum; ///< each block's largest relocation
+
+  SurfaceNetsCellCache *      m_CellCache;
+  UninitializedArray<Entry>   m_LocalCache; ///< the cache without a `cellCache`
+  UninitializedArray<Entry> & m_Cache;
+  const std::int64_t *        m_Size; ///< the image's size (voxels), null without a sampler
+  const std::int64_t          m_Sy;   ///< buffer offset of one step along y
+  const std::int64_t          m_Sz;   ///< buffer offset of one step along z
+};
+
+/** Stage 3 of SurfaceNets: relax the nodes (see SurfaceNetsRelaxer).
+ * `cellCache`: see SurfaceNetsCellCache. \ingroup MeshExtraction */
+template <typename TSampler, typename TGradient>
+SurfaceNetsRelaxationResult
+RelaxSurfaceNet(SurfaceNet &                            net,
+                const TSampler *                        sampler,
+                TGradient &&                            gradient,
+                const SurfaceNetsRelaxationParameters & parameters,
+                const std::function<void(double)> &     progress = nullptr,
+                SurfaceNetsCellCache *                  cellCache = nullptr)
+{
+  using RelaxationEnum = SurfaceNetsImageToMeshFilterEnums::Relaxation;
+  if (parameters.kind == RelaxationEnum::None || parameters.kind == RelaxationEnum::Automatic ||
+      parameters.maximumNumberOfIterations == 0)
+  {
+    return {};
+  }
+  if (parameters.kind != RelaxationEnum::Averaging && sampler == nullptr)
+  {
+    itkGenericExceptionMacro("SurfaceNets: gradient relaxation needs a greyscale image.");
+  }
+  SurfaceNetsRelaxer<TSampler, std::remove_reference_t<TGradient>> relaxer(
+    net, sampler, gradient, parameters, cellCache);
+  return relaxer.Run(progress);
 }
 
 } // namespace MeshExtraction

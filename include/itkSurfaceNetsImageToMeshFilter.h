@@ -26,11 +26,17 @@
 #include "itkQuadEdgeMesh.h"
 #include "itkSurfaceNetsImageToMeshFilterEnums.h"
 
+#include <array>
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
 namespace itk
 {
 namespace MeshExtraction
 {
 struct SurfaceNetsCellCache;
+struct SurfaceNetsClassificationStatistics;
 } // namespace MeshExtraction
 
 /** \class SurfaceNetsImageToMeshFilter
@@ -45,12 +51,22 @@ struct SurfaceNetsCellCache;
  * iso-surface. Voxels outside the image count as outside, so objects touching the
  * border are closed.
  *
- * The stages, each in its own unit:
- * 1. classify cells (cubes between 8 voxel centres) — ClassifySurfaceCells;
+ * GenerateData checks the input and the parameters and, with
+ * ResampleToIsotropicVoxels, resamples the inputs to cubic voxels (PrepareInputs);
+ * then it runs the stages, one line each, each in its own unit:
+ * 1. classify cells (cubes between 8 voxel centres) — ClassifyCells,
+ *    ClassifySurfaceCells;
  * 2. build the net: one node per surface sheet of a cell, the quadrilateral of
- *    every voxel edge crossing the surface, the links — BuildSurfaceNet;
- * 3. relax the nodes, each constrained to its cell — RelaxSurfaceNet;
- * 4. form faces in physical space — MakeSurfaceNetFaces.
+ *    every voxel edge crossing the surface, the links — BuildNet, BuildSurfaceNet;
+ * 3. relax the nodes, each constrained to its cell — RelaxNodes, RelaxSurfaceNet;
+ * 4. keep faces from crossing (PreventSelfIntersections): move the nodes of relaxed
+ *    faces that cross back toward their start — RemoveSelfIntersections,
+ *    RemoveSurfaceNetSelfIntersections;
+ * 5. form faces in physical space (unless stage 4 made them of the final nodes) —
+ *    FormFaces, MakeSurfaceNetFaces;
+ * 6. the high-quality mode (HighQuality): rounds of edge swaps and relaxation on the
+ *    triangles — RunHighQualityStage, ImproveTriangles;
+ * 7. the output mesh — MakeOutputMesh.
  *
  * Guarantees: the output is closed, 2-manifold and consistently oriented with
  * normals pointing out of the object, for every configuration. A cell where the
@@ -122,8 +138,8 @@ public:
   /** Relaxation (default Automatic: SNERT with a greyscale image, SNA without). */
   itkSetEnumMacro(Relaxation, RelaxationEnum);
   itkGetEnumMacro(Relaxation, RelaxationEnum);
-  /** Iteration limit of the relaxation (default 10: on the sphere phantoms quality and
-   * accuracy do not change between 5 and 20 iterations). */
+  /** Iteration limit of the relaxation (default 10: enough for the nodes to settle;
+   * more iterations change neither quality nor accuracy much). */
   itkSetMacro(MaximumNumberOfIterations, unsigned int);
   itkGetConstMacro(MaximumNumberOfIterations, unsigned int);
   /** The relaxation stops when no node moved more than this (voxels, default 1e-3). */
@@ -155,9 +171,9 @@ public:
    * 1-rings, every node on the iso-surface and near its own cell (see
    * ImprovementCellDilation). Swaps and moves that would flip, degenerate or cross a
    * triangle are undone, so the output keeps every guarantee of plain SurfaceNets.
-   * Needs triangles. On strongly anisotropic voxels (ratio above ~1.15) one node per
-   * cell cannot be spaced evenly in physical space: quality stays below the
-   * isotropic figures unless the image is resampled first (ResampleToIsotropicVoxels). */
+   * Needs triangles. On strongly anisotropic voxels one node per cell cannot be
+   * spaced evenly in physical space: quality stays below that on cubic voxels unless
+   * the image is resampled first (ResampleToIsotropicVoxels). */
   itkSetMacro(HighQuality, bool);
   itkGetConstMacro(HighQuality, bool);
   itkBooleanMacro(HighQuality);
@@ -169,10 +185,9 @@ public:
   itkGetConstMacro(NumberOfImprovementRounds, unsigned int);
   /** The rounds of the high-quality mode have converged when a round's regularity swaps
    * are fewer than this fraction of the triangles (default 0.001; 0: only a round
-   * without any swap ends them). Measured on the head CT of the README (671,368
-   * triangles, iso-value 300): the rounds swapped 34,758, 7,987, 1,327, 251, 48, 12, 2
-   * and 1 edges, and the mesh after three rounds (mean q_area 0.9273, q_angle 0.6480)
-   * is as good as after eight (0.9272, 0.6484), in half the time. */
+   * without any swap ends them). The swaps fall off quickly from round to round, and
+   * once they are few the later rounds barely change the mesh's quality: stopping
+   * then saves their time. */
   itkSetMacro(ConvergedSwapFraction, double);
   itkGetConstMacro(ConvergedSwapFraction, double);
   /** SNERT iterations per round in high-quality mode (default 4). */
@@ -180,15 +195,10 @@ public:
   itkGetConstMacro(ImprovementIterations, unsigned int);
   /** In high-quality mode a node may leave its cell by this much (voxels, default
    * 0.5, the most allowed): the swaps and the validity checks, not the cells, then keep
-   * the mesh valid. 0 keeps every node in its cell (plain SurfaceNets' constraint);
-   * measured on the sphere of radius 19 voxels, 0.25 raises mean q_angle from 0.81 to
-   * 0.85, removes the last slivers and lowers the largest vertex error from 0.075 to
-   * 0.017 voxel. 0.5 against 0.25 (`meshextraction extract ... --quality high
-   * --report`): mean q_angle 0.6647 against 0.6493 and triangles below q_angle 0.3
-   * 1.74 % against 2.21 % on the README's head CT at 300 HU, 0.6596 against 0.6289 and
-   * none against 0.0125 % on the narrow cleft, 0.7587 against 0.7351 on the ellipsoid
-   * with 1x1x2.5 mm voxels, 0.8384 against 0.8362 on the 128^3 sphere; mean vertex
-   * distances to the exact surfaces within 5 % of each other. */
+   * the mesh valid. 0 keeps every node in its cell (plain SurfaceNets' constraint).
+   * A node that may leave its cell reaches the iso-surface near the cell's corners and
+   * spaces out better: the larger the dilation, the more regular the triangles and the
+   * fewer the slivers, with the vertices as close to the surface as before. */
   itkSetMacro(ImprovementCellDilation, double);
   itkGetConstMacro(ImprovementCellDilation, double);
   /** Undo relaxation where faces would cross (default on): nodes of crossing
@@ -209,11 +219,9 @@ public:
    * type), label images by nearest neighbour. The grid starts at the buffered region's
    * first voxel, with the input's direction, and ends at or before its last voxel. The
    * linear interpolation moves the iso-surface by a fraction of a voxel, and can remove
-   * or join features of about one voxel. Measured with --quality high on the README's
-   * head CT (0.957 x 0.957 x 1.5 mm) at 300 HU: 916,592 triangles against 671,368, mean
-   * q_area 0.9657 against 0.9352, q_angle 0.7595 against 0.6647, triangles below q_angle
-   * 0.3 0.73 % against 1.74 %; on a sphere with 1 x 1 x 2 mm voxels q_angle 0.856 against
-   * 0.726. GetSurfaceNet() is then in the resampled grid's indices. */
+   * or join features of about one voxel. On anisotropic voxels the triangles come out
+   * markedly more regular (with --quality high, too), with more of them.
+   * GetSurfaceNet() is then in the resampled grid's indices. */
   itkSetMacro(ResampleToIsotropicVoxels, bool);
   itkGetConstMacro(ResampleToIsotropicVoxels, bool);
   itkBooleanMacro(ResampleToIsotropicVoxels);
@@ -258,9 +266,10 @@ protected:
   /** Stage 1: surface cells of the input (or the label image). */
   void
   ClassifyCells();
-  /** Stage 3: relax the net along its links (at most `iterations` times). With
-   * `cellCache`, the nodes' cells are read once for every call on this net. */
-  MeshExtraction::SurfaceNetsRelaxationResultSummary
+  /** Relax the net along its links (at most `iterations` times): stage 3, and the
+   * relaxation of the high-quality rounds. With `cellCache`, the nodes' cells are read
+   * once for every call on this net. */
+  MeshExtraction::SurfaceNetsRelaxationResult
   RelaxNet(RelaxationEnum                         relaxation,
            unsigned int                           iterations,
            MeshExtraction::SurfaceNetsCellCache * cellCache = nullptr);
@@ -268,7 +277,7 @@ protected:
   void
   ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles,
                    MeshExtraction::SurfaceNetsCellCache *         cellCache);
-  /** Stage 4: the faces (node indices) with the nodes in physical space, into the
+  /** Stage 7: the faces (node indices) with the nodes in physical space, into the
    * output mesh. `points`: the nodes' physical points if already made (the face
    * split made them), else null. */
   void
@@ -289,6 +298,87 @@ protected:
   GetSampledLabelImage() const;
 
 private:
+  /** The faces the stages hand on: node indices (triangles, or quads), and the nodes'
+   * physical points they were made with, by stage 4 or 5, while they are those of the
+   * final positions. */
+  struct Faces
+  {
+    MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
+    unsigned int                                                   polygonSize{ 3 };
+    std::vector<MeshExtraction::Vec3>                              checkedPoints; ///< stage 4's
+    MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>         points;        ///< stage 5's
+    bool movedNodes{ false }; ///< the high-quality stage moved the nodes after the faces were made
+
+    /** The points of the final positions, or null where none were made. */
+    const MeshExtraction::Vec3 *
+    PhysicalPoints() const
+    {
+      if (movedNodes)
+      {
+        return nullptr;
+      }
+      return !checkedPoints.empty() ? checkedPoints.data() : (!points.empty() ? points.data() : nullptr);
+    }
+  };
+  /** Output points rounded to float: what the self-intersection check must see. */
+  static constexpr bool RoundsToFloat = std::is_same<typename TOutputMesh::PointType::ValueType, float>::value;
+
+  /** Before the stages: the input and parameters checked, the inputs resampled
+   * (ResampleToIsotropicVoxels); returns the Relaxation with Automatic resolved. */
+  RelaxationEnum
+  PrepareInputs();
+  /** Stage 1's two ways: by label (the input or LabelImage), or by iso-value. Each
+   * returns what it saw of the greyscale input (its NaN voxel). */
+  MeshExtraction::SurfaceNetsClassificationStatistics
+  ClassifyCellsByLabel();
+  MeshExtraction::SurfaceNetsClassificationStatistics
+  ClassifyCellsByIsoValue();
+  /** The image index of a voxel given relative to the buffer's first voxel. */
+  template <typename TImage>
+  static typename TImage::IndexType
+  BufferIndex(const TImage * image, const std::int64_t * local);
+  /** Stage 2: the net of the surface cells. */
+  void
+  BuildNet();
+  /** Stage 3: relax the nodes (MaximumNumberOfIterations); returns their start
+   * positions where stage 4 runs (else empty). `cellCache` is kept for stage 6. */
+  MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>
+  RelaxNodes(RelaxationEnum relaxation, MeshExtraction::SurfaceNetsCellCache & cellCache);
+  /** Whether stage 4 runs: PreventSelfIntersections, and the nodes were relaxed. */
+  bool
+  PreventsSelfIntersections(RelaxationEnum relaxation) const
+  {
+    return m_PreventSelfIntersections && relaxation != RelaxationEnum::None;
+  }
+  /** Stage 4: nodes of crossing faces moved back toward `initial`; makes the faces of
+   * the final positions. */
+  void
+  RemoveSelfIntersections(RelaxationEnum                                                 relaxation,
+                          const MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> & initial,
+                          Faces &                                                        faces);
+  /** Stage 5: the faces by the Triangulation setting, unless stage 4 made them. */
+  void
+  FormFaces(Faces & faces);
+  /** Stage 6 (HighQuality): the high-quality rounds on the triangles. */
+  void
+  RunHighQualityStage(Faces & faces, MeshExtraction::SurfaceNetsCellCache & cellCache);
+  /** Stage 7's parts: the points, and the cells of an itk::Mesh. */
+  void
+  MakeOutputPoints(const MeshExtraction::Vec3 * points);
+  void
+  MakeOutputCells(const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                  unsigned int                                                           polygonSize);
+  /** The cells of a cells container that is a vector, made in one block (`cellType`: a
+   * null pointer to the cell type). */
+  template <typename TCell, typename TCellVector>
+  void
+  MakeBlockAllocatedCells(TCell *                                                                cellType,
+                          const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                          TCellVector &                                                          vector);
+  /** After the stages: the resampled copies of the inputs released. */
+  void
+  ReleaseResampledInputs();
+
   void
   VerifyParameters() const;
   /** Throws unless `labels` has the grid of `input` (size, spacing, origin, direction). */

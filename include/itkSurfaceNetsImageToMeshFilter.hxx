@@ -108,90 +108,106 @@ template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCells()
 {
-  const InputImageType * input = this->GetSampledInput();
-  const LabelImageType * labels = this->GetSampledLabelImage();
-  const unsigned int     workUnits = this->GetNumberOfWorkUnits();
-  auto                   index = [](const auto * image, const std::int64_t local[3]) {
-    auto i = image->GetBufferedRegion().GetIndex();
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      i[d] += local[d];
-    }
-    return i;
-  };
-
-  MeshExtraction::SurfaceNetsClassificationStatistics greyscale;
-  if (labels != nullptr || m_ClassifyByLabel)
-  {
-    const double                                        label = m_LabelValue;
-    MeshExtraction::SurfaceNetsClassificationStatistics stats;
-    if (labels != nullptr)
-    {
-      this->VerifyLabelImageGrid(input, labels);
-      stats = MeshExtraction::ClassifySurfaceCells(
-        labels,
-        MeshExtraction::SurfaceNetsVoxelRange<typename LabelImageType::PixelType>::FromLabel(label),
-        m_Net,
-        workUnits);
-      // The greyscale range and NaN check, for the relaxation.
-      MeshExtraction::SurfaceNet scratch;
-      greyscale = MeshExtraction::ClassifySurfaceCells(
-        input, MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::Never(), scratch, workUnits);
-    }
-    else
-    {
-      stats = MeshExtraction::ClassifySurfaceCells(
-        input, MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::FromLabel(label), m_Net, workUnits);
-      greyscale = stats;
-    }
-    if (stats.foundNaN)
-    {
-      itkExceptionMacro("The label image has a NaN voxel at index " << index(input, stats.nanVoxel) << '.');
-    }
-    if (stats.insideVoxels == 0)
-    {
-      itkExceptionMacro("No voxel has the label " << m_LabelValue << " (the labels range over [" << stats.minimum
-                                                  << ", " << stats.maximum << "]): there is no surface.");
-    }
-  }
-  else
-  {
-    const auto range =
-      MeshExtraction::SurfaceNetsVoxelRange<InputPixelType>::FromIsoValue(m_IsoValue, m_InsideIsAboveIsoValue);
-    greyscale = MeshExtraction::ClassifySurfaceCells(input, range, m_Net, workUnits, false);
-    // The extremes are needed only where there may be no surface (no voxel inside, or
-    // every voxel inside: a constant image), and then there is no NaN: read them then.
-    if (!greyscale.foundNaN &&
-        (greyscale.insideVoxels == 0 || greyscale.insideVoxels == input->GetBufferedRegion().GetNumberOfPixels()))
-    {
-      auto extremes = MinimumMaximumImageCalculator<InputImageType>::New();
-      extremes->SetImage(input);
-      extremes->SetRegion(input->GetBufferedRegion());
-      extremes->Compute();
-      greyscale.minimum = static_cast<double>(extremes->GetMinimum());
-      greyscale.maximum = static_cast<double>(extremes->GetMaximum());
-    }
-    if (!greyscale.foundNaN && greyscale.minimum == greyscale.maximum)
-    {
-      itkExceptionMacro("The input image is constant (every voxel is " << greyscale.minimum
-                                                                       << "): there is no iso-surface.");
-    }
-    if (!greyscale.foundNaN && greyscale.insideVoxels == 0)
-    {
-      itkExceptionMacro("No voxel is inside: the image ranges over ["
-                        << greyscale.minimum << ", " << greyscale.maximum << "] and the object is the voxels "
-                        << (m_InsideIsAboveIsoValue ? ">= " : "<= ") << m_IsoValue
-                        << " (IsoValue, InsideIsAboveIsoValue = " << m_InsideIsAboveIsoValue << ").");
-    }
-  }
+  const InputImageType *                                    input = this->GetSampledInput();
+  const MeshExtraction::SurfaceNetsClassificationStatistics greyscale =
+    (this->GetSampledLabelImage() != nullptr || m_ClassifyByLabel) ? this->ClassifyCellsByLabel()
+                                                                   : this->ClassifyCellsByIsoValue();
   if (greyscale.foundNaN)
   {
-    itkExceptionMacro("The input image has a NaN voxel at index " << index(input, greyscale.nanVoxel) << '.');
+    itkExceptionMacro("The input image has a NaN voxel at index " << BufferIndex(input, greyscale.nanVoxel) << '.');
   }
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
-MeshExtraction::SurfaceNetsRelaxationResultSummary
+template <typename TImage>
+auto
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::BufferIndex(const TImage *       image,
+                                                                                 const std::int64_t * local) ->
+  typename TImage::IndexType
+{
+  auto i = image->GetBufferedRegion().GetIndex();
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    i[d] += local[d];
+  }
+  return i;
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+MeshExtraction::SurfaceNetsClassificationStatistics
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCellsByLabel()
+{
+  using namespace MeshExtraction;
+  const InputImageType *              input = this->GetSampledInput();
+  const LabelImageType *              labels = this->GetSampledLabelImage();
+  const unsigned int                  workUnits = this->GetNumberOfWorkUnits();
+  const double                        label = m_LabelValue;
+  SurfaceNetsClassificationStatistics greyscale;
+  SurfaceNetsClassificationStatistics stats;
+  if (labels != nullptr)
+  {
+    this->VerifyLabelImageGrid(input, labels);
+    stats = ClassifySurfaceCells(
+      labels, SurfaceNetsVoxelRange<typename LabelImageType::PixelType>::FromLabel(label), m_Net, workUnits);
+    // The greyscale range and NaN check, for the relaxation.
+    SurfaceNet scratch;
+    greyscale = ClassifySurfaceCells(input, SurfaceNetsVoxelRange<InputPixelType>::Never(), scratch, workUnits);
+  }
+  else
+  {
+    stats = ClassifySurfaceCells(input, SurfaceNetsVoxelRange<InputPixelType>::FromLabel(label), m_Net, workUnits);
+    greyscale = stats;
+  }
+  if (stats.foundNaN)
+  {
+    itkExceptionMacro("The label image has a NaN voxel at index " << BufferIndex(input, stats.nanVoxel) << '.');
+  }
+  if (stats.insideVoxels == 0)
+  {
+    itkExceptionMacro("No voxel has the label " << m_LabelValue << " (the labels range over [" << stats.minimum << ", "
+                                                << stats.maximum << "]): there is no surface.");
+  }
+  return greyscale;
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+MeshExtraction::SurfaceNetsClassificationStatistics
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCellsByIsoValue()
+{
+  using namespace MeshExtraction;
+  const InputImageType * input = this->GetSampledInput();
+  const auto range = SurfaceNetsVoxelRange<InputPixelType>::FromIsoValue(m_IsoValue, m_InsideIsAboveIsoValue);
+  SurfaceNetsClassificationStatistics greyscale =
+    ClassifySurfaceCells(input, range, m_Net, this->GetNumberOfWorkUnits(), false);
+  // The extremes are needed only where there may be no surface (no voxel inside, or
+  // every voxel inside: a constant image), and then there is no NaN: read them then.
+  if (!greyscale.foundNaN &&
+      (greyscale.insideVoxels == 0 || greyscale.insideVoxels == input->GetBufferedRegion().GetNumberOfPixels()))
+  {
+    auto extremes = MinimumMaximumImageCalculator<InputImageType>::New();
+    extremes->SetImage(input);
+    extremes->SetRegion(input->GetBufferedRegion());
+    extremes->Compute();
+    greyscale.minimum = static_cast<double>(extremes->GetMinimum());
+    greyscale.maximum = static_cast<double>(extremes->GetMaximum());
+  }
+  if (!greyscale.foundNaN && greyscale.minimum == greyscale.maximum)
+  {
+    itkExceptionMacro("The input image is constant (every voxel is " << greyscale.minimum
+                                                                     << "): there is no iso-surface.");
+  }
+  if (!greyscale.foundNaN && greyscale.insideVoxels == 0)
+  {
+    itkExceptionMacro("No voxel is inside: the image ranges over ["
+                      << greyscale.minimum << ", " << greyscale.maximum << "] and the object is the voxels "
+                      << (m_InsideIsAboveIsoValue ? ">= " : "<= ") << m_IsoValue
+                      << " (IsoValue, InsideIsAboveIsoValue = " << m_InsideIsAboveIsoValue << ").");
+  }
+  return greyscale;
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+MeshExtraction::SurfaceNetsRelaxationResult
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
   RelaxationEnum                         relaxation,
   unsigned int                           iterations,
@@ -200,22 +216,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
   using namespace MeshExtraction;
   const InputImageType *          input = this->GetSampledInput();
   SurfaceNetsRelaxationParameters p;
-  switch (relaxation)
-  {
-    case RelaxationEnum::None:
-    case RelaxationEnum::Automatic:
-      p.kind = SurfaceNetsRelaxationKind::None;
-      break;
-    case RelaxationEnum::Averaging:
-      p.kind = SurfaceNetsRelaxationKind::Averaging;
-      break;
-    case RelaxationEnum::Gradient:
-      p.kind = SurfaceNetsRelaxationKind::Gradient;
-      break;
-    case RelaxationEnum::Combined:
-      p.kind = SurfaceNetsRelaxationKind::Combined;
-      break;
-  }
+  p.kind = relaxation;
   p.maximumNumberOfIterations = iterations;
   p.convergenceThreshold = m_ConvergenceThreshold;
   p.smoothingWeight = m_SmoothingWeight;
@@ -239,16 +240,16 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
 
   const SurfaceNetsSampler<InputImageType> sampler(input, m_IsoValue, m_InsideIsAboveIsoValue ? -1.0 : 1.0);
 
-  SurfaceNetsRelaxationResult result;
-  if (p.kind == SurfaceNetsRelaxationKind::Averaging || p.kind == SurfaceNetsRelaxationKind::None)
+  if (relaxation != RelaxationEnum::Gradient && relaxation != RelaxationEnum::Combined)
   {
-    result = RelaxSurfaceNet(
+    // No step to the iso-surface: no gradient.
+    return RelaxSurfaceNet(
       m_Net, &sampler, [](const Vec3 &, std::uint32_t) { return MakeVec3(0, 0, 0); }, p, progress, cellCache);
   }
-  else if (m_GradientMethod == GradientEnum::GaussianDerivative)
+  if (m_GradientMethod == GradientEnum::GaussianDerivative)
   {
     const SurfaceNetsGaussianGradient<InputImageType> gaussian(input, m_Net, m_GradientSigma);
-    result = RelaxSurfaceNet(
+    return RelaxSurfaceNet(
       m_Net,
       &sampler,
       [this, &gaussian](const Vec3 & q, std::uint32_t node) { return gaussian.Gradient(q, m_Net.nodeCell[node]); },
@@ -256,17 +257,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
       progress,
       cellCache);
   }
-  else
-  {
-    result = RelaxSurfaceNet(
-      m_Net,
-      &sampler,
-      [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); },
-      p,
-      progress,
-      cellCache);
-  }
-  return { result.iterations, result.lastMaximumRelocation };
+  return RelaxSurfaceNet(
+    m_Net, &sampler, [&sampler](const Vec3 & q, std::uint32_t) { return sampler.Gradient(q); }, p, progress, cellCache);
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -521,14 +513,41 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   unsigned int                                                           polygonSize,
   const MeshExtraction::Vec3 *                                           points)
 {
+  OutputMeshType * output = this->GetOutput();
+  output->Initialize();
+  this->MakeOutputPoints(points);
+  if constexpr (MeshExtraction::Detail::IsQuadEdgeMesh<OutputMeshType>::value)
+  {
+    typename OutputMeshType::PointIdList ids(polygonSize);
+    for (std::size_t f = 0; f < polygons.size(); ++f)
+    {
+      for (unsigned int k = 0; k < polygonSize; ++k)
+      {
+        ids[k] = polygons[f][k];
+      }
+      if (output->AddFace(ids) == nullptr)
+      {
+        itkExceptionMacro("Internal error: the QuadEdgeMesh refused face " << f << " of the SurfaceNet.");
+      }
+    }
+  }
+  else
+  {
+    this->MakeOutputCells(polygons, polygonSize);
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputPoints(
+  const MeshExtraction::Vec3 * points)
+{
   using namespace MeshExtraction;
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
   const std::size_t numberOfPoints = m_Net.positions.size();
-
-  OutputMeshType * output = this->GetOutput();
-  output->Initialize();
+  OutputMeshType *  output = this->GetOutput();
   using PointType = typename OutputMeshType::PointType;
   using CoordinateType = typename PointType::ValueType;
   // Each node's physical point: the face split's, or made as it is stored (no array
@@ -573,102 +592,123 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
       output->SetPoint(static_cast<typename OutputMeshType::PointIdentifier>(i), toPoint(i));
     }
   }
-  if constexpr (Detail::IsQuadEdgeMesh<OutputMeshType>::value)
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputCells(
+  const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+  unsigned int                                                           polygonSize)
+{
+  OutputMeshType * output = this->GetOutput();
+  using CellType = typename OutputMeshType::CellType;
+  using CellsContainer = typename OutputMeshType::CellsContainer;
+  if constexpr (std::is_same<CellsContainer,
+                             VectorContainer<typename CellsContainer::ElementIdentifier, CellType *>>::value)
   {
-    typename OutputMeshType::PointIdList ids(polygonSize);
-    for (std::size_t f = 0; f < polygons.size(); ++f)
+    // As for the points. The cells are made in one block (BlockAllocatedCell)
+    // instead of one heap object each, which was most of the time of an itk::Mesh
+    // output; the mesh still owns and deletes each cell (its default,
+    // CellsAllocatedDynamicallyCellByCell), and the block goes with the last.
+    auto container = CellsContainer::New();
+    output->SetCells(container);
+    auto & vector = container->CastToSTLContainer();
+    vector.assign(polygons.size(), nullptr);
+    if (polygonSize == 3)
     {
-      for (unsigned int k = 0; k < polygonSize; ++k)
-      {
-        ids[k] = polygons[f][k];
-      }
-      if (output->AddFace(ids) == nullptr)
-      {
-        itkExceptionMacro("Internal error: the QuadEdgeMesh refused face " << f << " of the SurfaceNet.");
-      }
+      this->MakeBlockAllocatedCells(static_cast<TriangleCell<CellType> *>(nullptr), polygons, vector);
+    }
+    else
+    {
+      this->MakeBlockAllocatedCells(static_cast<QuadrilateralCell<CellType> *>(nullptr), polygons, vector);
     }
   }
   else
   {
-    using CellType = typename OutputMeshType::CellType;
-    using CellsContainer = typename OutputMeshType::CellsContainer;
-    if constexpr (std::is_same<CellsContainer,
-                               VectorContainer<typename CellsContainer::ElementIdentifier, CellType *>>::value)
+    // Another cells container: one heap cell per face, through SetCell.
+    for (std::size_t f = 0; f < polygons.size(); ++f)
     {
-      // As for the points. The cells are made in one block (BlockAllocatedCell)
-      // instead of one heap object each, which was most of the time of an
-      // itk::Mesh output; the mesh still owns and deletes each cell (its default,
-      // CellsAllocatedDynamicallyCellByCell), and the block goes with the last.
-      auto container = CellsContainer::New();
-      output->SetCells(container);
-      auto & vector = container->CastToSTLContainer();
-      vector.assign(polygons.size(), nullptr);
-      // Then the ids, through the cell type's own SetPointId (no virtual call per id).
-      // In a second pass rather than as each cell is made: that changes the order of
-      // the heap's allocations, and made the filter twice as slow in later runs of a
-      // process (see benchmark/README.md).
-      auto makeCells = [&](auto * cellType) { // cellType: a null pointer to the cell type
-        using Cell = std::remove_pointer_t<decltype(cellType)>;
-        try
-        {
-          BlockAllocatedCell<Cell>::MakeCells(polygons.size(), vector.begin());
-        }
-        catch (const std::bad_alloc &)
-        {
-          itkExceptionMacro("Out of memory while making the " << polygons.size() << " cells of the output mesh.");
-        }
-        MeshExtraction::ParallelForBlocks(polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
-          for (std::size_t f = begin; f < end; ++f)
-          {
-            auto * cell = static_cast<Cell *>(vector[f]);
-            for (unsigned int k = 0; k < polygonSize; ++k)
-            {
-              cell->Cell::SetPointId(static_cast<int>(k), polygons[f][k]);
-            }
-          }
-        });
-      };
-      if (polygonSize == 3)
+      CellType *                         made = polygonSize == 3 ? static_cast<CellType *>(new TriangleCell<CellType>)
+                                                                 : static_cast<CellType *>(new QuadrilateralCell<CellType>);
+      typename CellType::CellAutoPointer cell;
+      cell.TakeOwnership(made);
+      for (unsigned int k = 0; k < polygonSize; ++k)
       {
-        makeCells(static_cast<TriangleCell<CellType> *>(nullptr));
+        cell->SetPointId(k, polygons[f][k]);
       }
-      else
-      {
-        makeCells(static_cast<QuadrilateralCell<CellType> *>(nullptr));
-      }
-    }
-    else
-    {
-      // Another cells container: one heap cell per face, through SetCell.
-      for (std::size_t f = 0; f < polygons.size(); ++f)
-      {
-        CellType *                         made = polygonSize == 3 ? static_cast<CellType *>(new TriangleCell<CellType>)
-                                                                   : static_cast<CellType *>(new QuadrilateralCell<CellType>);
-        typename CellType::CellAutoPointer cell;
-        cell.TakeOwnership(made);
-        for (unsigned int k = 0; k < polygonSize; ++k)
-        {
-          cell->SetPointId(k, polygons[f][k]);
-        }
-        output->SetCell(static_cast<typename OutputMeshType::CellIdentifier>(f), cell);
-      }
+      output->SetCell(static_cast<typename OutputMeshType::CellIdentifier>(f), cell);
     }
   }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+template <typename TCell, typename TCellVector>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeBlockAllocatedCells(
+  TCell *,
+  const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+  TCellVector &                                                          vector)
+{
+  try
+  {
+    MeshExtraction::BlockAllocatedCell<TCell>::MakeCells(polygons.size(), vector.begin());
+  }
+  catch (const std::bad_alloc &)
+  {
+    itkExceptionMacro("Out of memory while making the " << polygons.size() << " cells of the output mesh.");
+  }
+  // Then the ids, through the cell type's own SetPointId (no virtual call per id). In
+  // a second pass rather than as each cell is made: that changes the order of the
+  // heap's allocations, which made later runs of a process much slower.
+  constexpr unsigned int polygonSize = TCell::NumberOfPoints;
+  MeshExtraction::ParallelForBlocks(polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      auto * cell = static_cast<TCell *>(vector[f]);
+      for (unsigned int k = 0; k < polygonSize; ++k)
+      {
+        cell->TCell::SetPointId(static_cast<int>(k), polygons[f][k]);
+      }
+    }
+  });
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateData()
 {
-  // Every stage, including the free functions below, runs on this filter's work units.
+  // Every stage, including the free functions they call, runs on this filter's work units.
   const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
+  const RelaxationEnum                          relaxation = this->PrepareInputs();
+  MeshExtraction::SurfaceNetsCellCache          cellCache; // the high-quality stage's cells, read once
+  Faces                                         faces;
+  this->UpdateProgress(0.0f);
+  this->ClassifyCells(); // 1
+  this->UpdateProgress(0.2f);
+  this->BuildNet(); // 2
+  this->UpdateProgress(0.3f);
+  const auto initial = this->RelaxNodes(relaxation, cellCache); // 3
+  this->RemoveSelfIntersections(relaxation, initial, faces);    // 4
+  this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
+  this->FormFaces(faces);                      // 5
+  this->RunHighQualityStage(faces, cellCache); // 6
+  this->UpdateProgress(0.85f);
+  this->MakeOutputMesh(faces.polygons, faces.polygonSize, faces.PhysicalPoints()); // 7
+  this->ReleaseResampledInputs();
+  this->UpdateProgress(1.0f);
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+auto
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrepareInputs() -> RelaxationEnum
+{
   if (this->GetInput() == nullptr)
   {
     itkExceptionMacro("No input image: call SetInput() first.");
   }
   this->VerifyParameters();
-  // Resampled copies, when asked for, replace the inputs for every stage below. They
-  // are released at the end (after an exception, by the next run or the filter's end).
+  // Resampled copies, when asked for, replace the inputs for every stage. They are
+  // released at the end (after an exception, by the next run or the filter's end).
   this->ResampleInputs();
   RelaxationEnum relaxation = m_Relaxation;
   const bool     haveGreyscale = !m_ClassifyByLabel;
@@ -683,81 +723,106 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
                                        "(ClassifyByLabel): use Averaging, or give the greyscale image as input "
                                        "and the labels as LabelImage.");
   }
+  return relaxation;
+}
 
-  this->UpdateProgress(0.0f);
-  this->ClassifyCells(); // 1
-  this->UpdateProgress(0.2f);
-  MeshExtraction::BuildSurfaceNet(m_Net, m_CellMargin, this->GetNumberOfWorkUnits()); // 2
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::BuildNet()
+{
+  MeshExtraction::BuildSurfaceNet(m_Net, m_CellMargin, this->GetNumberOfWorkUnits());
   m_NumberOfNodes = m_Net.positions.size();
   m_NumberOfSplitCells = m_Net.numberOfSplitCells;
-  this->UpdateProgress(0.3f);
-  // The start positions, toward which the self-intersection check moves nodes back
-  // (a copy only when that check runs).
-  const bool checkMoves = m_PreventSelfIntersections && relaxation != RelaxationEnum::None;
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+auto
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNodes(
+  RelaxationEnum                         relaxation,
+  MeshExtraction::SurfaceNetsCellCache & cellCache) -> MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>
+{
+  // The start positions, toward which stage 4 moves nodes back (a copy only when it runs).
   MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> initial;
-  if (checkMoves)
+  if (this->PreventsSelfIntersections(relaxation))
   {
     initial = m_Net.positions;
   }
-  // In the high-quality mode, the nodes' cells are read once for the relaxation
-  // here and those that follow (otherwise the memory goes with this relaxation).
-  MeshExtraction::SurfaceNetsCellCache cellCache;
-  const auto                           relaxed =
-    this->RelaxNet(relaxation, m_MaximumNumberOfIterations, m_HighQuality ? &cellCache : nullptr); // 3
+  // In the high-quality mode, the nodes' cells are read once for this relaxation and
+  // those that follow (otherwise the memory goes with this relaxation).
+  const auto relaxed = this->RelaxNet(relaxation, m_MaximumNumberOfIterations, m_HighQuality ? &cellCache : nullptr);
   m_NumberOfIterations = relaxed.iterations;
   m_LastMaximumRelocation = relaxed.lastMaximumRelocation;
+  return initial;
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSelfIntersections(
+  RelaxationEnum                                                 relaxation,
+  const MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> & initial,
+  Faces &                                                        faces)
+{
+  m_NumberOfNodesMovedBack = 0;
+  if (!this->PreventsSelfIntersections(relaxation))
+  {
+    return;
+  }
   Matrix<double, 3, 3> M;
   MeshExtraction::Vec3 first;
   this->GetGeometry(M, first);
-  m_NumberOfNodesMovedBack = 0;
-  // The faces (stage 4): those the self-intersection check made of the final
-  // positions, or made here; and the nodes' physical points they were made with
-  // (rounded to float for a float mesh, as the output rounds them anyway), so that
-  // the output need not make them again.
-  MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
-  unsigned int                                                   polygonSize = 3;
-  std::vector<MeshExtraction::Vec3>                              checkedPoints;
-  MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>         points;
-  if (checkMoves)
+  // The faces of the final positions, and the nodes' physical points they were made with
+  // (rounded to float for a float mesh, as the output rounds them anyway), so that the
+  // stages after need not make them again.
+  m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(
+    m_Net, initial, first, M, this->GetQuadSplit(), RoundsToFloat, &faces.polygons, &faces.checkedPoints);
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::FormFaces(Faces & faces)
+{
+  if (!faces.polygons.empty())
   {
-    m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(
-      m_Net,
-      initial,
-      first,
-      M,
-      this->GetQuadSplit(),
-      std::is_same<typename OutputMeshType::PointType::ValueType, float>::value,
-      &polygons,
-      &checkedPoints); // 3b
+    return; // stage 4 made them of the final positions
   }
-  this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
-  if (polygons.empty())
-  {
-    MeshExtraction::MakeSurfaceNetFaces(m_Net, first, M, this->GetQuadSplit(), points, polygons, polygonSize); // 4
-  }
+  Matrix<double, 3, 3> M;
+  MeshExtraction::Vec3 first;
+  this->GetGeometry(M, first);
+  MeshExtraction::MakeSurfaceNetFaces(
+    m_Net, first, M, this->GetQuadSplit(), faces.points, faces.polygons, faces.polygonSize);
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQualityStage(
+  Faces &                                faces,
+  MeshExtraction::SurfaceNetsCellCache & cellCache)
+{
   m_NumberOfSwaps = 0;
   m_NumberOfRoundsPerformed = 0;
-  if (m_HighQuality)
+  if (!m_HighQuality)
   {
-    std::vector<MeshExtraction::TriangleIndices> triangles(polygons.size());
-    for (std::size_t f = 0; f < polygons.size(); ++f)
-    {
-      triangles[f] = { polygons[f][0], polygons[f][1], polygons[f][2] };
-    }
-    this->ImproveTriangles(triangles, &cellCache); // 5
-    for (std::size_t f = 0; f < polygons.size(); ++f)
-    {
-      polygons[f] = { triangles[f][0], triangles[f][1], triangles[f][2], 0 };
-    }
+    return;
   }
-  this->UpdateProgress(0.85f);
-  // The high-quality mode moved the nodes: their points are made anew.
-  const MeshExtraction::Vec3 * made =
-    !checkedPoints.empty() ? checkedPoints.data() : (!points.empty() ? points.data() : nullptr);
-  this->MakeOutputMesh(polygons, polygonSize, m_HighQuality ? nullptr : made);
+  std::vector<MeshExtraction::TriangleIndices> triangles(faces.polygons.size());
+  for (std::size_t f = 0; f < faces.polygons.size(); ++f)
+  {
+    triangles[f] = { faces.polygons[f][0], faces.polygons[f][1], faces.polygons[f][2] };
+  }
+  this->ImproveTriangles(triangles, &cellCache);
+  for (std::size_t f = 0; f < faces.polygons.size(); ++f)
+  {
+    faces.polygons[f] = { triangles[f][0], triangles[f][1], triangles[f][2], 0 };
+  }
+  faces.movedNodes = true; // their points are made anew
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ReleaseResampledInputs()
+{
   m_SampledInput = nullptr;
   m_SampledLabelImage = nullptr;
-  this->UpdateProgress(1.0f);
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>

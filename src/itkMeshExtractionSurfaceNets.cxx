@@ -59,11 +59,13 @@ CrossesUpperEdge(unsigned int configuration, unsigned int a)
 {
   return (((configuration >> UpperEdgeLowCorner(a)) ^ (configuration >> 7)) & 1u) != 0;
 }
-} // namespace
 
-SurfaceNetsCellTable::SurfaceNetsCellTable()
-    : m_NumberOfSheets(256 * 64, 0)
-    , m_SheetOfEdge(256 * 64)
+// -------------------------------------------------------------------------------------
+// The cell table: edges, faces, and the sheets of every configuration and face rule.
+
+/** Edge 4a + ob + 2oc: along axis a, at offsets ob and oc on the two following axes. */
+void
+NumberCellEdges(SurfaceNetsCellTable & table)
 {
   for (unsigned int e = 0; e < 12; ++e)
   {
@@ -71,20 +73,31 @@ SurfaceNetsCellTable::SurfaceNetsCellTable()
     unsigned int       offset[3] = { 0, 0, 0 };
     offset[(a + 1) % 3] = e & 1;
     offset[(a + 2) % 3] = (e >> 1) & 1;
-    edgeCorners[e][0] = static_cast<std::uint8_t>(CornerIndex(offset));
+    table.edgeCorners[e][0] = static_cast<std::uint8_t>(CornerIndex(offset));
     offset[a] = 1;
-    edgeCorners[e][1] = static_cast<std::uint8_t>(CornerIndex(offset));
+    table.edgeCorners[e][1] = static_cast<std::uint8_t>(CornerIndex(offset));
   }
-  auto edgeBetween = [this](unsigned int c0, unsigned int c1) {
-    for (unsigned int e = 0; e < 12; ++e)
+}
+
+/** The edge between corners c0 and c1 (12 if they are not neighbours). */
+unsigned int
+EdgeBetween(const SurfaceNetsCellTable & table, unsigned int c0, unsigned int c1)
+{
+  for (unsigned int e = 0; e < 12; ++e)
+  {
+    if ((table.edgeCorners[e][0] == c0 && table.edgeCorners[e][1] == c1) ||
+        (table.edgeCorners[e][0] == c1 && table.edgeCorners[e][1] == c0))
     {
-      if ((edgeCorners[e][0] == c0 && edgeCorners[e][1] == c1) || (edgeCorners[e][0] == c1 && edgeCorners[e][1] == c0))
-      {
-        return e;
-      }
+      return e;
     }
-    return 12u;
-  };
+  }
+  return 12u;
+}
+
+/** Face 2f + s: at offset s along axis f, its corners and edges in cyclic order. */
+void
+NumberCellFaces(SurfaceNetsCellTable & table)
+{
   for (unsigned int f = 0; f < 3; ++f)
   {
     for (unsigned int s = 0; s < 2; ++s)
@@ -98,22 +111,561 @@ SurfaceNetsCellTable::SurfaceNetsCellTable()
         offset[f] = s;
         offset[u] = cyclic[i][0];
         offset[v] = cyclic[i][1];
-        faceCorners[2 * f + s][i] = static_cast<std::uint8_t>(CornerIndex(offset));
+        table.faceCorners[2 * f + s][i] = static_cast<std::uint8_t>(CornerIndex(offset));
       }
       for (unsigned int i = 0; i < 4; ++i)
       {
-        faceEdges[2 * f + s][i] =
-          static_cast<std::uint8_t>(edgeBetween(faceCorners[2 * f + s][i], faceCorners[2 * f + s][(i + 1) % 4]));
+        table.faceEdges[2 * f + s][i] = static_cast<std::uint8_t>(
+          EdgeBetween(table, table.faceCorners[2 * f + s][i], table.faceCorners[2 * f + s][(i + 1) % 4]));
       }
     }
   }
+}
+
+/** Disjoint sets of a cell's 12 edges: the edges of one sheet end up in one set. */
+class EdgeSets
+{
+public:
+  EdgeSets()
+  {
+    std::iota(m_Parent, m_Parent + 12, 0u);
+  }
+  unsigned int
+  Find(unsigned int x) const
+  {
+    while (m_Parent[x] != x)
+    {
+      x = m_Parent[x];
+    }
+    return x;
+  }
+  void
+  Join(unsigned int a, unsigned int b)
+  {
+    a = this->Find(a);
+    b = this->Find(b);
+    if (a != b)
+    {
+      m_Parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+
+private:
+  unsigned int m_Parent[12];
+};
+
+/** Joins the crossing edges of face f that one segment of the surface connects: the
+ * two of a face with two, and on an ambiguous face (four) those around each inside
+ * corner (`cutInside`, the default rule) or each outside corner. */
+void
+JoinSegmentsOfFace(const SurfaceNetsCellTable & table,
+                   unsigned int                 configuration,
+                   const bool                   crossing[12],
+                   unsigned int                 f,
+                   bool                         cutInside,
+                   EdgeSets &                   sets)
+{
+  unsigned int crossings[4];
+  unsigned int n = 0;
+  for (unsigned int i = 0; i < 4; ++i)
+  {
+    if (crossing[table.faceEdges[f][i]])
+    {
+      crossings[n++] = table.faceEdges[f][i];
+    }
+  }
+  if (n == 2)
+  {
+    sets.Join(crossings[0], crossings[1]);
+  }
+  else if (n == 4)
+  {
+    for (unsigned int i = 0; i < 4; ++i)
+    {
+      const bool inside = ((configuration >> table.faceCorners[f][i]) & 1u) != 0;
+      if (inside == cutInside)
+      {
+        sets.Join(table.faceEdges[f][(i + 3) % 4], table.faceEdges[f][i]);
+      }
+    }
+  }
+}
+
+/** The sheets of a configuration under face rules `rules` (bit f: ambiguous face f
+ * cuts off its outside corners): each crossing edge's sheet, numbered in edge order,
+ * into `sheetOfEdge` (-1 for the other edges); returns the number of sheets. */
+std::uint8_t
+FindSheets(const SurfaceNetsCellTable &  table,
+           unsigned int                  configuration,
+           const bool                    crossing[12],
+           unsigned int                  rules,
+           std::array<std::int8_t, 12> & sheetOfEdge)
+{
+  EdgeSets sets;
+  for (unsigned int f = 0; f < 6; ++f)
+  {
+    JoinSegmentsOfFace(table, configuration, crossing, f, ((rules >> f) & 1u) == 0, sets);
+  }
+  std::int8_t sheetOfRoot[12];
+  std::fill(sheetOfRoot, sheetOfRoot + 12, static_cast<std::int8_t>(-1));
+  std::uint8_t sheets = 0;
+  for (unsigned int e = 0; e < 12; ++e)
+  {
+    sheetOfEdge[e] = -1;
+    if (!crossing[e])
+    {
+      continue;
+    }
+    const unsigned int root = sets.Find(e);
+    if (sheetOfRoot[root] < 0)
+    {
+      sheetOfRoot[root] = static_cast<std::int8_t>(sheets++);
+    }
+    sheetOfEdge[e] = sheetOfRoot[root];
+  }
+  return sheets;
+}
+
+// -------------------------------------------------------------------------------------
+// BuildSurfaceNet's passes: rows of cells, face rules and node numbers, nodes, quads,
+// links.
+
+constexpr std::size_t NetBlockSize = 4096;
+
+/** rowStart[r]: the first cell in row r or later, set where the row changes from one
+ * cell to the next (the cells are sorted). */
+void
+IndexCellRows(SurfaceNet & net, unsigned int numberOfWorkUnits)
+{
+  const std::size_t  numberOfCells = net.cells.size();
+  const std::int64_t rows = (net.size[1] + 1) * (net.size[2] + 1);
+  net.rowStart.resize(static_cast<std::size_t>(rows) + 1);
+  auto rowOf = [&net](const SurfaceCell & c) { return net.RowOf(c.y, c.z); };
+  ParallelForBlocks(
+    numberOfCells + 1,
+    16384,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const std::int64_t previous = i == 0 ? -1 : rowOf(net.cells[i - 1]);
+        const std::int64_t row = i == numberOfCells ? rows : rowOf(net.cells[i]);
+        for (std::int64_t r = previous + 1; r <= row; ++r)
+        {
+          net.rowStart[static_cast<std::size_t>(r)] = static_cast<std::uint32_t>(i);
+        }
+      }
+    },
+    numberOfWorkUnits);
+}
+
+/** Whether a cell's face joins its two segments in one sheet. */
+bool
+OneSheetOnFace(const SurfaceNetsCellTable & table, const SurfaceCell & cell, unsigned int face)
+{
+  return table.SheetOfEdge(cell.configuration, cell.faceRules, table.faceEdges[face][0]) ==
+         table.SheetOfEdge(cell.configuration, cell.faceRules, table.faceEdges[face][2]);
+}
+
+/** Ambiguous faces: where the face's two segments would belong to one sheet in both
+ * cells that share it (joining the same two nodes twice), cut off the face's other
+ * pair of corners instead; that splits the sheet in both cells and never joins sheets
+ * elsewhere, so one pass in cell order settles every face. A cell's faces with
+ * earlier cells were settled before it, so its rule is final once its later faces
+ * are: its nodes (one per sheet) are numbered in the same pass. Returns the number of
+ * nodes. */
+std::uint32_t
+SettleFaceRulesAndNumberNodes(SurfaceNet & net, const SurfaceNetsCellTable & table)
+{
+  std::uint32_t numberOfNodes = 0;
+  net.numberOfSplitCells = 0;
+  for (std::size_t i = 0; i < net.cells.size(); ++i)
+  {
+    SurfaceCell &      c = net.cells[i];
+    const unsigned int ambiguous = table.ambiguousFaces[c.configuration];
+    for (unsigned int f = 0; f < 3; ++f)
+    {
+      const unsigned int upper = 2 * f + 1; // the face shared with the next cell along axis f
+      if (!((ambiguous >> upper) & 1u))
+      {
+        continue;
+      }
+      std::int64_t next[3] = { c.x, c.y, c.z };
+      ++next[f];
+      const std::int64_t j = net.FindCell(next[0], next[1], next[2]);
+      if (j < 0)
+      {
+        itkGenericExceptionMacro("SurfaceNets: internal error: an ambiguous face lacks its second cell.");
+      }
+      SurfaceCell & d = net.cells[j];
+      if (OneSheetOnFace(table, c, upper) && OneSheetOnFace(table, d, upper - 1))
+      {
+        c.faceRules = static_cast<std::uint8_t>(c.faceRules ^ (1u << upper));
+        d.faceRules = static_cast<std::uint8_t>(d.faceRules ^ (1u << (upper - 1)));
+      }
+    }
+    c.firstNode = numberOfNodes;
+    const unsigned int sheets = table.NumberOfSheets(c.configuration, c.faceRules);
+    numberOfNodes += sheets;
+    net.numberOfSplitCells += sheets > 1 ? 1 : 0;
+  }
+  return numberOfNodes;
+}
+
+/** The centre of the midpoints of sheet s's edges, in the cell's local coordinates.
+ * (All edges of a sheet never lie on one face, so this point is at least 1/12 voxel
+ * inside the cell.) */
+Vec3
+SheetCentre(const SurfaceNetsCellTable & table, const SurfaceCell & c, unsigned int s)
+{
+  Vec3         sum = MakeVec3(0, 0, 0);
+  unsigned int count = 0;
+  for (unsigned int e = 0; e < 12; ++e)
+  {
+    if (table.SheetOfEdge(c.configuration, c.faceRules, e) != static_cast<std::int8_t>(s))
+    {
+      continue;
+    }
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      sum[d] += 0.5 * (((table.edgeCorners[e][0] >> d) & 1) + ((table.edgeCorners[e][1] >> d) & 1));
+    }
+    ++count;
+  }
+  return sum * (1.0 / count);
+}
+
+/** Each node's cell, start position and box: the cell shrunk by `margin` voxels, the
+ * node at its centre (thesis 3.2.1); in a cell with several sheets each node sits at
+ * the centre of its sheet's edge midpoints and stays there, so that the sheets keep
+ * apart. */
+void
+PlaceNodes(SurfaceNet &                 net,
+           const SurfaceNetsCellTable & table,
+           double                       margin,
+           std::uint32_t                numberOfNodes,
+           unsigned int                 numberOfWorkUnits)
+{
+  net.positions.resize(numberOfNodes);
+  net.boxLower.resize(numberOfNodes);
+  net.boxUpper.resize(numberOfNodes);
+  net.nodeCell.resize(numberOfNodes);
+  ParallelForBlocks(
+    net.cells.size(),
+    NetBlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const SurfaceCell & c = net.cells[i];
+        const Vec3          corner = MakeVec3(c.x, c.y, c.z);
+        const unsigned int  sheets = table.NumberOfSheets(c.configuration, c.faceRules);
+        for (unsigned int s = 0; s < sheets; ++s)
+        {
+          const std::uint32_t node = c.firstNode + s;
+          net.nodeCell[node] = static_cast<std::uint32_t>(i);
+          Vec3 lower = MakeVec3(margin, margin, margin);
+          Vec3 upper = MakeVec3(1 - margin, 1 - margin, 1 - margin);
+          Vec3 start = MakeVec3(0.5, 0.5, 0.5);
+          if (sheets > 1)
+          {
+            start = SheetCentre(table, c, s);
+            lower = start;
+            upper = start;
+          }
+          for (unsigned int d = 0; d < 3; ++d)
+          {
+            start[d] = std::clamp(start[d], lower[d], upper[d]);
+          }
+          net.positions[node] = corner + start;
+          net.boxLower[node] = corner + lower;
+          net.boxUpper[node] = corner + upper;
+        }
+      }
+    },
+    numberOfWorkUnits);
+}
+
+/** Cursors into the four rows of cells a cell's quads reach: the neighbours of cell
+ * (x, y, z) lie in its own row and the rows at y+1, z+1 and both, at x or x+1. One
+ * cursor per row, (dy, dz) = (0, 0), (1, 0), (0, 1), (1, 1), moves forward as x grows
+ * (the cells are sorted), instead of a search per neighbour. */
+struct NeighbourRowCursors
+{
+  const SurfaceCell * at[4] = { nullptr, nullptr, nullptr, nullptr };
+  const SurfaceCell * last[4] = { nullptr, nullptr, nullptr, nullptr };
+  std::int64_t        currentRow = -1;
+
+  /** Cell c's rows, unless they are the current ones. */
+  void
+  MoveTo(const SurfaceCell &         c,
+         const SurfaceCell * const   cells,
+         const std::uint32_t * const rowStart,
+         std::int64_t                sizeY,
+         std::int64_t                sizeZ)
+  {
+    const std::int64_t row = (std::int64_t{ c.z } + 1) * (sizeY + 1) + (std::int64_t{ c.y } + 1);
+    if (row == currentRow)
+    {
+      return;
+    }
+    currentRow = row;
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      const std::int64_t dy = k & 1u;
+      const std::int64_t dz = k >> 1;
+      at[k] = last[k] = nullptr;
+      if (c.y + dy < sizeY && c.z + dz < sizeZ)
+      {
+        const std::size_t r = static_cast<std::size_t>(row + dz * (sizeY + 1) + dy);
+        at[k] = cells + rowStart[r];
+        last[k] = cells + rowStart[r + 1];
+      }
+    }
+  }
+
+  /** The cell at x in row k, or null. */
+  const SurfaceCell *
+  Find(unsigned int k, std::int32_t x)
+  {
+    while (at[k] != last[k] && at[k]->x < x)
+    {
+      ++at[k];
+    }
+    return at[k] != last[k] && at[k]->x == x ? at[k] : nullptr;
+  }
+};
+
+/** The quad of cell c's crossing voxel edge 4a+3 (along axis a, at offset 1 on the two
+ * other axes b and c), counter-clockwise seen from outside, at quads[q] (q advanced);
+ * its four cells' nodes are those of that edge's sheet in each. The neighbours one
+ * step along b, along c and along both are in rows kb, kc, kbc at x + dxb, dxc, dxbc.
+ * Sets `missing` if one of them is not a surface cell. */
+template <unsigned int a>
+inline void
+AddQuadAlong(const SurfaceNetsCellTable &   table,
+             const SurfaceCell &            c,
+             NeighbourRowCursors &          cursors,
+             std::array<std::uint32_t, 4> * quads,
+             std::uint8_t *                 quadAxis,
+             std::size_t &                  q,
+             bool &                         missing)
+{
+  constexpr unsigned int e = 4 * a + 3;
+  constexpr unsigned int b = (a + 1) % 3;
+  constexpr unsigned int cAxis = (a + 2) % 3;
+  if (!CrossesUpperEdge(c.configuration, a))
+  {
+    return;
+  }
+  constexpr unsigned int kb = (b == 1 ? 1 : 0) + (b == 2 ? 2 : 0);
+  constexpr unsigned int kc = (cAxis == 1 ? 1 : 0) + (cAxis == 2 ? 2 : 0);
+  const SurfaceCell *    cb = cursors.Find(kb, c.x + (b == 0 ? 1 : 0));
+  const SurfaceCell *    cc = cursors.Find(kc, c.x + (cAxis == 0 ? 1 : 0));
+  const SurfaceCell *    cbc = cursors.Find(kb + kc, c.x + 1 - (a == 0 ? 1 : 0));
+  if (cb == nullptr || cc == nullptr || cbc == nullptr)
+  {
+    missing = true;
+    return;
+  }
+  const std::uint32_t n = c.firstNode + table.SheetOfEdge(c.configuration, c.faceRules, e);
+  const std::uint32_t nb = cb->firstNode + table.SheetOfEdge(cb->configuration, cb->faceRules, 4 * a + 2);
+  const std::uint32_t nc = cc->firstNode + table.SheetOfEdge(cc->configuration, cc->faceRules, 4 * a + 1);
+  const std::uint32_t nbc = cbc->firstNode + table.SheetOfEdge(cbc->configuration, cbc->faceRules, 4 * a + 0);
+  if ((c.configuration >> UpperEdgeLowCorner(a)) & 1u)
+  {
+    quads[q] = { nbc, nc, n, nb }; // outward along +a
+    quadAxis[q] = static_cast<std::uint8_t>(a);
+  }
+  else
+  {
+    quads[q] = { nb, n, nc, nbc }; // outward along -a
+    quadAxis[q] = static_cast<std::uint8_t>(a + 4);
+  }
+  ++q;
+}
+
+/** The quads of cells [begin, end) from quad `q` on; false if a crossing voxel edge
+ * lacks one of its four surface cells. */
+bool
+FillQuadsOfBlock(SurfaceNet &                 net,
+                 const SurfaceNetsCellTable & table,
+                 std::size_t                  begin,
+                 std::size_t                  end,
+                 std::size_t                  q)
+{
+  // Locals, so that the stores to the quads cannot alias them.
+  const SurfaceCell * const            cells = net.cells.data();
+  const std::uint32_t * const          rowStart = net.rowStart.data();
+  const std::int64_t                   sizeY = net.size[1];
+  const std::int64_t                   sizeZ = net.size[2];
+  std::array<std::uint32_t, 4> * const quads = net.quads.data();
+  std::uint8_t * const                 quadAxis = net.quadAxis.data();
+  bool                                 missing = false;
+  NeighbourRowCursors                  cursors;
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const SurfaceCell & c = cells[i];
+    cursors.MoveTo(c, cells, rowStart, sizeY, sizeZ);
+    AddQuadAlong<0>(table, c, cursors, quads, quadAxis, q, missing);
+    AddQuadAlong<1>(table, c, cursors, quads, quadAxis, q, missing);
+    AddQuadAlong<2>(table, c, cursors, quads, quadAxis, q, missing);
+  }
+  return !missing;
+}
+
+/** The quads: each crossing voxel edge is found once, from the cell that has it as its
+ * edge at offset (1, 1) on the two other axes (thesis 3.2.5). Counted per block of
+ * cells, then each block fills its own range. */
+void
+MakeQuads(SurfaceNet & net, const SurfaceNetsCellTable & table, unsigned int numberOfWorkUnits)
+{
+  const std::size_t        numberOfCells = net.cells.size();
+  const std::size_t        numberOfBlocks = (numberOfCells + NetBlockSize - 1) / NetBlockSize;
+  std::vector<std::size_t> quadsPerBlock(numberOfBlocks + 1, 0);
+  ParallelForBlocks(
+    numberOfCells,
+    NetBlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t block) {
+      std::size_t count = 0;
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        for (unsigned int a = 0; a < 3; ++a)
+        {
+          count += CrossesUpperEdge(net.cells[i].configuration, a) ? 1 : 0;
+        }
+      }
+      quadsPerBlock[block + 1] = count;
+    },
+    numberOfWorkUnits);
+  std::partial_sum(quadsPerBlock.begin(), quadsPerBlock.end(), quadsPerBlock.begin());
+  net.quads.resize(quadsPerBlock.back());
+  net.quadAxis.resize(quadsPerBlock.back());
+  std::atomic<bool> missingNeighbour{ false };
+  ParallelForBlocks(
+    numberOfCells,
+    NetBlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t block) {
+      if (!FillQuadsOfBlock(net, table, begin, end, quadsPerBlock[block]))
+      {
+        missingNeighbour = true;
+      }
+    },
+    numberOfWorkUnits);
+  if (missingNeighbour)
+  {
+    itkGenericExceptionMacro("SurfaceNets: internal error: a crossing voxel edge lacks one of its four surface cells.");
+  }
+}
+
+/** Each node's links as the successors of its corners in the quads, gathered in quad
+ * order: `degree` the compressed rows' starts (numberOfNodes + 1), `all` the links. */
+void
+GatherLinks(const SurfaceNet &                net,
+            std::uint32_t                     numberOfNodes,
+            LargeBlockVector<std::uint32_t> & degree,
+            LargeBlockVector<std::uint32_t> & all)
+{
+  degree.assign(numberOfNodes + 1, 0);
+  for (const auto & quad : net.quads)
+  {
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      ++degree[quad[k] + 1];
+    }
+  }
+  std::partial_sum(degree.begin(), degree.end(), degree.begin());
+  all.resize(degree.back());
+  std::vector<std::uint32_t> cursor(degree.begin(), degree.end() - 1);
+  for (const auto & quad : net.quads)
+  {
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      all[cursor[quad[k]]++] = quad[(k + 1) % 4];
+    }
+  }
+}
+
+/** Sorts each node's few links (insertion sort) and drops repeats; unique[v + 1] is
+ * the number left of node v. In parallel over blocks of nodes. */
+void
+SortLinksOfEachNode(LargeBlockVector<std::uint32_t> &       all,
+                    const LargeBlockVector<std::uint32_t> & degree,
+                    LargeBlockVector<std::uint32_t> &       unique,
+                    unsigned int                            numberOfWorkUnits)
+{
+  const std::size_t numberOfNodes = degree.size() - 1;
+  unique.assign(numberOfNodes + 1, 0);
+  ParallelForBlocks(
+    numberOfNodes,
+    NetBlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t v = begin; v < end; ++v)
+      {
+        std::uint32_t * first = all.data() + degree[v];
+        std::uint32_t * last = all.data() + degree[v + 1];
+        for (std::uint32_t * i = first + 1; i < last; ++i)
+        {
+          const std::uint32_t value = *i;
+          std::uint32_t *     j = i;
+          for (; j > first && *(j - 1) > value; --j)
+          {
+            *j = *(j - 1);
+          }
+          *j = value;
+        }
+        unique[v + 1] = static_cast<std::uint32_t>(std::unique(first, last) - first);
+      }
+    },
+    numberOfWorkUnits);
+}
+
+/** The links: the edges of the quads. Every link is the edge of two quads, the two
+ * crossing voxel edges of its segment on the face between its cells, and the quads
+ * are oriented consistently, so a link runs from v to w in one of them and from w to
+ * v in the other: each node gathers its links once as the successors of its corners.
+ * Repeats, which a consistent net has none of, are dropped. */
+void
+LinkNodes(SurfaceNet & net, std::uint32_t numberOfNodes, unsigned int numberOfWorkUnits)
+{
+  LargeBlockVector<std::uint32_t> degree;
+  LargeBlockVector<std::uint32_t> all;
+  GatherLinks(net, numberOfNodes, degree, all);
+  LargeBlockVector<std::uint32_t> unique;
+  SortLinksOfEachNode(all, degree, unique, numberOfWorkUnits);
+  std::partial_sum(unique.begin(), unique.end(), unique.begin());
+  if (unique.back() == degree.back())
+  {
+    // No repeats (always, in a consistently oriented net): the gathered links are the links.
+    net.neighbors = std::move(all);
+    net.neighborStart = std::move(degree);
+    return;
+  }
+  net.neighbors.resize(unique.back());
+  ParallelForBlocks(
+    numberOfNodes,
+    NetBlockSize,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t v = begin; v < end; ++v)
+      {
+        std::copy_n(all.data() + degree[v], unique[v + 1] - unique[v], net.neighbors.data() + unique[v]);
+      }
+    },
+    numberOfWorkUnits);
+  net.neighborStart = std::move(unique);
+}
+} // namespace
+
+SurfaceNetsCellTable::SurfaceNetsCellTable()
+    : m_NumberOfSheets(256 * 64, 0)
+    , m_SheetOfEdge(256 * 64)
+{
+  NumberCellEdges(*this);
+  NumberCellFaces(*this);
   for (unsigned int configuration = 0; configuration < 256; ++configuration)
   {
-    auto inside = [configuration](unsigned int corner) { return ((configuration >> corner) & 1u) != 0; };
     bool crossing[12];
     for (unsigned int e = 0; e < 12; ++e)
     {
-      crossing[e] = inside(edgeCorners[e][0]) != inside(edgeCorners[e][1]);
+      crossing[e] = ((configuration >> edgeCorners[e][0]) & 1u) != ((configuration >> edgeCorners[e][1]) & 1u);
     }
     ambiguousFaces[configuration] = 0;
     for (unsigned int f = 0; f < 6; ++f)
@@ -127,70 +679,8 @@ SurfaceNetsCellTable::SurfaceNetsCellTable()
     }
     for (unsigned int rules = 0; rules < 64; ++rules)
     {
-      unsigned int parent[12];
-      std::iota(parent, parent + 12, 0u);
-      auto find = [&parent](unsigned int x) {
-        while (parent[x] != x)
-        {
-          x = parent[x];
-        }
-        return x;
-      };
-      auto join = [&](unsigned int a, unsigned int b) {
-        a = find(a);
-        b = find(b);
-        if (a != b)
-        {
-          parent[std::max(a, b)] = std::min(a, b);
-        }
-      };
-      for (unsigned int f = 0; f < 6; ++f)
-      {
-        unsigned int crossings[4];
-        unsigned int n = 0;
-        for (unsigned int i = 0; i < 4; ++i)
-        {
-          if (crossing[faceEdges[f][i]])
-          {
-            crossings[n++] = faceEdges[f][i];
-          }
-        }
-        if (n == 2)
-        {
-          join(crossings[0], crossings[1]);
-        }
-        else if (n == 4)
-        {
-          // Ambiguous face: cut off each inside corner (default) or each outside corner.
-          const bool cutInside = ((rules >> f) & 1u) == 0;
-          for (unsigned int i = 0; i < 4; ++i)
-          {
-            if (inside(faceCorners[f][i]) == cutInside)
-            {
-              join(faceEdges[f][(i + 3) % 4], faceEdges[f][i]);
-            }
-          }
-        }
-      }
-      std::int8_t sheetOfRoot[12];
-      std::fill(sheetOfRoot, sheetOfRoot + 12, static_cast<std::int8_t>(-1));
-      std::uint8_t sheets = 0;
-      auto &       sheetOfEdge = m_SheetOfEdge[configuration * 64 + rules];
-      for (unsigned int e = 0; e < 12; ++e)
-      {
-        sheetOfEdge[e] = -1;
-        if (!crossing[e])
-        {
-          continue;
-        }
-        const unsigned int root = find(e);
-        if (sheetOfRoot[root] < 0)
-        {
-          sheetOfRoot[root] = static_cast<std::int8_t>(sheets++);
-        }
-        sheetOfEdge[e] = sheetOfRoot[root];
-      }
-      m_NumberOfSheets[configuration * 64 + rules] = sheets;
+      m_NumberOfSheets[configuration * 64 + rules] =
+        FindSheets(*this, configuration, crossing, rules, m_SheetOfEdge[configuration * 64 + rules]);
     }
   }
 }
@@ -225,323 +715,55 @@ void
 BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
 {
   const SurfaceNetsCellTable & table = SurfaceNetsCellTable::Get();
-  const std::size_t            numberOfCells = net.cells.size();
-
-  // Rows of cells for lookups: rowStart[r] is the first cell in row r or later, set
-  // where the row changes from one cell to the next (the cells are sorted).
-  const std::int64_t rows = (net.size[1] + 1) * (net.size[2] + 1);
-  net.rowStart.resize(static_cast<std::size_t>(rows) + 1);
-  auto rowOf = [&net](const SurfaceCell & c) { return net.RowOf(c.y, c.z); };
-  ParallelForBlocks(
-    numberOfCells + 1,
-    16384,
-    [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        const std::int64_t previous = i == 0 ? -1 : rowOf(net.cells[i - 1]);
-        const std::int64_t row = i == numberOfCells ? rows : rowOf(net.cells[i]);
-        for (std::int64_t r = previous + 1; r <= row; ++r)
-        {
-          net.rowStart[static_cast<std::size_t>(r)] = static_cast<std::uint32_t>(i);
-        }
-      }
-    },
-    numberOfWorkUnits);
-
-  // Ambiguous faces: where the face's two segments would belong to one sheet in
-  // both cells that share it (joining the same two nodes twice), cut off the
-  // face's other pair of corners instead; that splits the sheet in both cells
-  // and never joins sheets elsewhere, so one pass in cell order settles every face.
-  // A cell's faces with earlier cells were settled before it, so its rule is final
-  // once its later faces are: count its nodes (one per sheet) in the same pass.
-  std::uint32_t numberOfNodes = 0;
-  net.numberOfSplitCells = 0;
-  for (std::size_t i = 0; i < numberOfCells; ++i)
-  {
-    SurfaceCell &      c = net.cells[i];
-    const unsigned int ambiguous = table.ambiguousFaces[c.configuration];
-    for (unsigned int f = 0; f < 3; ++f)
-    {
-      const unsigned int upper = 2 * f + 1; // the face shared with the next cell along axis f
-      if (!((ambiguous >> upper) & 1u))
-      {
-        continue;
-      }
-      std::int64_t next[3] = { c.x, c.y, c.z };
-      ++next[f];
-      const std::int64_t j = net.FindCell(next[0], next[1], next[2]);
-      if (j < 0)
-      {
-        itkGenericExceptionMacro("SurfaceNets: internal error: an ambiguous face lacks its second cell.");
-      }
-      SurfaceCell & d = net.cells[j];
-      auto          oneSheet = [&table](const SurfaceCell & cell, unsigned int face) {
-        return table.SheetOfEdge(cell.configuration, cell.faceRules, table.faceEdges[face][0]) ==
-               table.SheetOfEdge(cell.configuration, cell.faceRules, table.faceEdges[face][2]);
-      };
-      if (oneSheet(c, upper) && oneSheet(d, upper - 1))
-      {
-        c.faceRules = static_cast<std::uint8_t>(c.faceRules ^ (1u << upper));
-        d.faceRules = static_cast<std::uint8_t>(d.faceRules ^ (1u << (upper - 1)));
-      }
-    }
-    c.firstNode = numberOfNodes;
-    const unsigned int sheets = table.NumberOfSheets(c.configuration, c.faceRules);
-    numberOfNodes += sheets;
-    net.numberOfSplitCells += sheets > 1 ? 1 : 0;
-  }
-
-  // Nodes.
-  net.positions.resize(numberOfNodes);
-  net.boxLower.resize(numberOfNodes);
-  net.boxUpper.resize(numberOfNodes);
-  net.nodeCell.resize(numberOfNodes);
-  ParallelForBlocks(
-    numberOfCells,
-    4096,
-    [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        const SurfaceCell & c = net.cells[i];
-        const Vec3          corner = MakeVec3(c.x, c.y, c.z);
-        const unsigned int  sheets = table.NumberOfSheets(c.configuration, c.faceRules);
-        for (unsigned int s = 0; s < sheets; ++s)
-        {
-          const std::uint32_t node = c.firstNode + s;
-          net.nodeCell[node] = static_cast<std::uint32_t>(i);
-          Vec3 lower = MakeVec3(margin, margin, margin);
-          Vec3 upper = MakeVec3(1 - margin, 1 - margin, 1 - margin);
-          Vec3 start = MakeVec3(0.5, 0.5, 0.5);
-          if (sheets > 1)
-          {
-            // A cell with several sheets: each node sits at the centre of its sheet's
-            // edge midpoints and stays there, so that the sheets keep apart. (All
-            // edges of a sheet never lie on one face, so this point is at least 1/12
-            // voxel inside the cell.)
-            Vec3         sum = MakeVec3(0, 0, 0);
-            unsigned int count = 0;
-            for (unsigned int e = 0; e < 12; ++e)
-            {
-              if (table.SheetOfEdge(c.configuration, c.faceRules, e) != static_cast<std::int8_t>(s))
-              {
-                continue;
-              }
-              for (unsigned int d = 0; d < 3; ++d)
-              {
-                sum[d] += 0.5 * (((table.edgeCorners[e][0] >> d) & 1) + ((table.edgeCorners[e][1] >> d) & 1));
-              }
-              ++count;
-            }
-            start = sum * (1.0 / count);
-            lower = start;
-            upper = start;
-          }
-          for (unsigned int d = 0; d < 3; ++d)
-          {
-            start[d] = std::clamp(start[d], lower[d], upper[d]);
-          }
-          net.positions[node] = corner + start;
-          net.boxLower[node] = corner + lower;
-          net.boxUpper[node] = corner + upper;
-        }
-      }
-    },
-    numberOfWorkUnits);
-
-  // Quads: each crossing voxel edge is found once, from the cell that has it as
-  // its edge at offset (1, 1) on the two other axes (thesis 3.2.5).
-  constexpr std::size_t    BlockSize = 4096;
-  const std::size_t        numberOfBlocks = (numberOfCells + BlockSize - 1) / BlockSize;
-  std::vector<std::size_t> quadsPerBlock(numberOfBlocks + 1, 0);
-  ParallelForBlocks(
-    numberOfCells,
-    BlockSize,
-    [&](std::size_t begin, std::size_t end, std::size_t block) {
-      std::size_t count = 0;
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        for (unsigned int a = 0; a < 3; ++a)
-        {
-          count += CrossesUpperEdge(net.cells[i].configuration, a) ? 1 : 0;
-        }
-      }
-      quadsPerBlock[block + 1] = count;
-    },
-    numberOfWorkUnits);
-  std::partial_sum(quadsPerBlock.begin(), quadsPerBlock.end(), quadsPerBlock.begin());
-  net.quads.resize(quadsPerBlock.back());
-  net.quadAxis.resize(quadsPerBlock.back());
-  std::atomic<bool> missingNeighbour{ false };
-  ParallelForBlocks(
-    numberOfCells,
-    BlockSize,
-    [&](std::size_t begin, std::size_t end, std::size_t block) {
-      // Locals, so that the stores to the quads cannot alias them.
-      const SurfaceCell * const            cells = net.cells.data();
-      const std::uint32_t * const          rowStart = net.rowStart.data();
-      const std::int64_t                   sizeY = net.size[1];
-      const std::int64_t                   sizeZ = net.size[2];
-      std::array<std::uint32_t, 4> * const quads = net.quads.data();
-      std::uint8_t * const                 quadAxis = net.quadAxis.data();
-      std::size_t                          q = quadsPerBlock[block];
-      bool                                 missing = false;
-      // The neighbours of cell (x, y, z) lie in its own row and the rows at y+1, z+1
-      // and both, at x or x+1: one cursor per row, moving forward as x grows (the
-      // cells are sorted), instead of a search per neighbour.
-      // Cursors at and ends last of the rows (dy, dz) = (0, 0), (1, 0), (0, 1), (1, 1).
-      const SurfaceCell * at[4] = { nullptr, nullptr, nullptr, nullptr };
-      const SurfaceCell * last[4] = { nullptr, nullptr, nullptr, nullptr };
-      std::int64_t        currentRow = -1;
-      auto                find = [&](unsigned int k, std::int32_t x) -> const SurfaceCell * {
-        while (at[k] != last[k] && at[k]->x < x)
-        {
-          ++at[k];
-        }
-        return at[k] != last[k] && at[k]->x == x ? at[k] : nullptr;
-      };
-      // The quad of the crossing voxel edge 4a+3 (along axis a, at offset 1 on the two
-      // other axes b and c); the neighbours one step along b, along c and along both
-      // are in rows kb, kc, kbc at x + dxb, dxc, dxbc.
-      auto quadAlong = [&](const SurfaceCell & c, auto axis) {
-        constexpr unsigned int a = decltype(axis)::value;
-        constexpr unsigned int e = 4 * a + 3;
-        constexpr unsigned int b = (a + 1) % 3;
-        constexpr unsigned int cAxis = (a + 2) % 3;
-        if (!CrossesUpperEdge(c.configuration, a))
-        {
-          return;
-        }
-        constexpr unsigned int kb = (b == 1 ? 1 : 0) + (b == 2 ? 2 : 0);
-        constexpr unsigned int kc = (cAxis == 1 ? 1 : 0) + (cAxis == 2 ? 2 : 0);
-        const SurfaceCell *    cb = find(kb, c.x + (b == 0 ? 1 : 0));
-        const SurfaceCell *    cc = find(kc, c.x + (cAxis == 0 ? 1 : 0));
-        const SurfaceCell *    cbc = find(kb + kc, c.x + 1 - (a == 0 ? 1 : 0));
-        if (cb == nullptr || cc == nullptr || cbc == nullptr)
-        {
-          missing = true;
-          return;
-        }
-        const std::uint32_t n = c.firstNode + table.SheetOfEdge(c.configuration, c.faceRules, e);
-        const std::uint32_t nb = cb->firstNode + table.SheetOfEdge(cb->configuration, cb->faceRules, 4 * a + 2);
-        const std::uint32_t nc = cc->firstNode + table.SheetOfEdge(cc->configuration, cc->faceRules, 4 * a + 1);
-        const std::uint32_t nbc = cbc->firstNode + table.SheetOfEdge(cbc->configuration, cbc->faceRules, 4 * a + 0);
-        if ((c.configuration >> UpperEdgeLowCorner(a)) & 1u)
-        {
-          quads[q] = { nbc, nc, n, nb }; // outward along +a
-          quadAxis[q] = static_cast<std::uint8_t>(a);
-        }
-        else
-        {
-          quads[q] = { nb, n, nc, nbc }; // outward along -a
-          quadAxis[q] = static_cast<std::uint8_t>(a + 4);
-        }
-        ++q;
-      };
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        const SurfaceCell & c = cells[i];
-        const std::int64_t  row = (std::int64_t{ c.z } + 1) * (sizeY + 1) + (std::int64_t{ c.y } + 1);
-        if (row != currentRow)
-        {
-          currentRow = row;
-          for (unsigned int k = 0; k < 4; ++k)
-          {
-            const std::int64_t dy = k & 1u;
-            const std::int64_t dz = k >> 1;
-            at[k] = last[k] = nullptr;
-            if (c.y + dy < sizeY && c.z + dz < sizeZ)
-            {
-              const std::size_t r = static_cast<std::size_t>(row + dz * (sizeY + 1) + dy);
-              at[k] = cells + rowStart[r];
-              last[k] = cells + rowStart[r + 1];
-            }
-          }
-        }
-        quadAlong(c, std::integral_constant<unsigned int, 0>{});
-        quadAlong(c, std::integral_constant<unsigned int, 1>{});
-        quadAlong(c, std::integral_constant<unsigned int, 2>{});
-      }
-      if (missing)
-      {
-        missingNeighbour = true;
-      }
-    },
-    numberOfWorkUnits);
-  if (missingNeighbour)
-  {
-    itkGenericExceptionMacro("SurfaceNets: internal error: a crossing voxel edge lacks one of its four surface cells.");
-  }
-
-  // Links: the edges of the quads. Every link is the edge of two quads, the two
-  // crossing voxel edges of its segment on the face between its cells, and the quads
-  // are oriented consistently, so a link runs from v to w in one of them and from w
-  // to v in the other: each node gathers its links once as the successors of its
-  // corners. Sort the few (insertion sort; drop repeats, which a consistent net has
-  // none of) in parallel over blocks of nodes.
-  LargeBlockVector<std::uint32_t> degree(numberOfNodes + 1, 0);
-  for (const auto & quad : net.quads)
-  {
-    for (unsigned int k = 0; k < 4; ++k)
-    {
-      ++degree[quad[k] + 1];
-    }
-  }
-  std::partial_sum(degree.begin(), degree.end(), degree.begin());
-  LargeBlockVector<std::uint32_t> all(degree.back());
-  {
-    std::vector<std::uint32_t> cursor(degree.begin(), degree.end() - 1);
-    for (const auto & quad : net.quads)
-    {
-      for (unsigned int k = 0; k < 4; ++k)
-      {
-        all[cursor[quad[k]]++] = quad[(k + 1) % 4];
-      }
-    }
-  }
-  LargeBlockVector<std::uint32_t> unique(numberOfNodes + 1, 0);
-  ParallelForBlocks(
-    numberOfNodes,
-    BlockSize,
-    [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t v = begin; v < end; ++v)
-      {
-        std::uint32_t * first = all.data() + degree[v];
-        std::uint32_t * last = all.data() + degree[v + 1];
-        for (std::uint32_t * i = first + 1; i < last; ++i)
-        {
-          const std::uint32_t value = *i;
-          std::uint32_t *     j = i;
-          for (; j > first && *(j - 1) > value; --j)
-          {
-            *j = *(j - 1);
-          }
-          *j = value;
-        }
-        unique[v + 1] = static_cast<std::uint32_t>(std::unique(first, last) - first);
-      }
-    },
-    numberOfWorkUnits);
-  std::partial_sum(unique.begin(), unique.end(), unique.begin());
-  if (unique.back() == degree.back())
-  {
-    // No repeats (always, in a consistently oriented net): the gathered links are the links.
-    net.neighbors = std::move(all);
-    net.neighborStart = std::move(degree);
-    return;
-  }
-  net.neighbors.resize(unique.back());
-  ParallelForBlocks(
-    numberOfNodes,
-    BlockSize,
-    [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t v = begin; v < end; ++v)
-      {
-        std::copy_n(all.data() + degree[v], unique[v + 1] - unique[v], net.neighbors.data() + unique[v]);
-      }
-    },
-    numberOfWorkUnits);
-  net.neighborStart = std::move(unique);
+  IndexCellRows(net, numberOfWorkUnits);
+  const std::uint32_t numberOfNodes = SettleFaceRulesAndNumberNodes(net, table);
+  PlaceNodes(net, table, margin, numberOfNodes, numberOfWorkUnits);
+  MakeQuads(net, table, numberOfWorkUnits);
+  LinkNodes(net, numberOfNodes, numberOfWorkUnits);
 }
+
+namespace
+{
+/** Whether quad i is split along its diagonal 0-2 (else 1-3): the diagonal `split`
+ * prefers (the shorter, or the one whose triangles' smallest angle is larger), unless
+ * that gives a triangle facing away from the quad's voxel-edge direction (in index
+ * space) and the other diagonal faces it better. */
+bool
+SplitAlongDiagonal02(const SurfaceNet & net, QuadSplit split, const Vec3 * points, std::size_t i)
+{
+  const auto &       q = net.quads[i];
+  const unsigned int axis = net.quadAxis[i] & 3u;
+  const double       sign = (net.quadAxis[i] & 4u) ? -1.0 : 1.0;
+  // Orientation in index space, along the quad's voxel edge.
+  auto facing = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return sign * TriangleNormal(net.positions[a], net.positions[b], net.positions[c])[axis];
+  };
+  const double along02 = std::min(facing(q[0], q[1], q[2]), facing(q[0], q[2], q[3]));
+  const double along13 = std::min(facing(q[0], q[1], q[3]), facing(q[1], q[2], q[3]));
+  bool         use02;
+  if (split == QuadSplit::ShortestDiagonal)
+  {
+    use02 = SquaredNorm(points[q[0]] - points[q[2]]) <= SquaredNorm(points[q[1]] - points[q[3]]);
+  }
+  else
+  {
+    auto smallestAngle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      return MeasureTriangle(points[a], points[b], points[c]).minAngle;
+    };
+    use02 = std::min(smallestAngle(q[0], q[1], q[2]), smallestAngle(q[0], q[2], q[3])) >=
+            std::min(smallestAngle(q[0], q[1], q[3]), smallestAngle(q[1], q[2], q[3]));
+  }
+  if (use02 && !(along02 > 0.0) && along13 > along02)
+  {
+    return false;
+  }
+  if (!use02 && !(along13 > 0.0) && along02 > along13)
+  {
+    return true;
+  }
+  return use02;
+}
+} // namespace
 
 void
 MakeSurfaceNetFaces(const SurfaceNet &                               net,
@@ -569,39 +791,10 @@ MakeSurfaceNetFaces(const SurfaceNet &                               net,
   ParallelForBlocks(net.quads.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      const auto &       q = net.quads[i];
-      const unsigned int axis = net.quadAxis[i] & 3u;
-      const double       sign = (net.quadAxis[i] & 4u) ? -1.0 : 1.0;
-      // Orientation in index space, along the quad's voxel edge.
-      auto facing = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        return sign * TriangleNormal(net.positions[a], net.positions[b], net.positions[c])[axis];
-      };
-      const double along02 = std::min(facing(q[0], q[1], q[2]), facing(q[0], q[2], q[3]));
-      const double along13 = std::min(facing(q[0], q[1], q[3]), facing(q[1], q[2], q[3]));
-      bool         use02;
-      if (split == QuadSplit::ShortestDiagonal)
-      {
-        use02 = SquaredNorm(points[q[0]] - points[q[2]]) <= SquaredNorm(points[q[1]] - points[q[3]]);
-      }
-      else
-      {
-        auto smallestAngle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-          return MeasureTriangle(points[a], points[b], points[c]).minAngle;
-        };
-        use02 = std::min(smallestAngle(q[0], q[1], q[2]), smallestAngle(q[0], q[2], q[3])) >=
-                std::min(smallestAngle(q[0], q[1], q[3]), smallestAngle(q[1], q[2], q[3]));
-      }
-      if (use02 && !(along02 > 0.0) && along13 > along02)
-      {
-        use02 = false;
-      }
-      else if (!use02 && !(along13 > 0.0) && along02 > along13)
-      {
-        use02 = true;
-      }
+      const auto &                 q = net.quads[i];
       std::array<std::uint32_t, 4> t0;
       std::array<std::uint32_t, 4> t1;
-      if (use02)
+      if (SplitAlongDiagonal02(net, split, points, i))
       {
         t0 = { { q[0], q[1], q[2], 0 } };
         t1 = { { q[0], q[2], q[3], 0 } };

@@ -404,7 +404,7 @@ TEST(SurfaceNetsRelaxation, ANodeOutsideItsCellStepsAlongTheTrilinearFieldOfTheC
   net.neighborStart.assign(2, 0);
   const ME::SurfaceNetsSampler<FloatImage> sampler(image.GetPointer(), 6.25, -1.0);
   ME::SurfaceNetsRelaxationParameters      parameters;
-  parameters.kind = ME::SurfaceNetsRelaxationKind::Gradient;
+  parameters.kind = itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::Gradient;
   parameters.maximumNumberOfIterations = 1;
   parameters.centralDifferences = true;
   parameters.isoValue = 6.25;
