@@ -158,6 +158,15 @@ protected:
   MatrixType
   RequireRotation(const char * parameterName, const MatrixType & value) const;
 
+  /** `value` with 17 significant digits, for the messages of
+   * CheckParameterConsistency(). */
+  static std::string
+  ParameterText(double value);
+  static std::string
+  ParameterText(const InputType & value);
+  static std::string
+  ParameterText(const VectorType & value);
+
 private:
   std::string m_ParameterError;
 };

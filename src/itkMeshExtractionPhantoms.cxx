@@ -16,7 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionPhantoms.h"
-#include "itkMeshExtractionTriangleGeometry.h"
+#include "itkMeshExtractionClosedFormGeometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,51 +51,17 @@ using PointType = ImplicitSurfaceFunction::InputType;
 using VectorType = ImplicitSurfaceFunction::VectorType;
 using MatrixType = ImplicitSurfaceFunction::MatrixType;
 
-constexpr double DegreesToRadians = 3.14159265358979323846 / 180.0;
-
 /** The grid's direction, checked orthogonal within 1e-4 and orthonormalised. */
 MatrixType
 GridFrame(const PhantomGrid & grid)
 {
-  double maximumError = 0.0;
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    for (unsigned int j = 0; j < 3; ++j)
-    {
-      double dot = 0.0;
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        dot += grid.direction(k, i) * grid.direction(k, j);
-      }
-      const double error = std::abs(dot - (i == j ? 1.0 : 0.0));
-      maximumError = std::isfinite(error) ? std::max(maximumError, error) : 1e300;
-    }
-  }
+  const double maximumError = OrthogonalityError(grid.direction);
   if (!(maximumError <= 1e-4))
   {
     itkGenericExceptionMacro(<< "PhantomGrid direction must be orthogonal (max |D^T D - I| <= 1e-4), got\n"
                              << grid.direction << "with max |D^T D - I| = " << maximumError);
   }
-  Vec3 c[3];
-  for (unsigned int j = 0; j < 3; ++j)
-  {
-    c[j] = MakeVec3(grid.direction(0, j), grid.direction(1, j), grid.direction(2, j));
-  }
-  c[0] /= Norm(c[0]);
-  c[1] -= c[0] * Dot(c[1], c[0]);
-  c[1] /= Norm(c[1]);
-  c[2] -= c[0] * Dot(c[2], c[0]);
-  c[2] -= c[1] * Dot(c[2], c[1]);
-  c[2] /= Norm(c[2]);
-  MatrixType frame;
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    for (unsigned int j = 0; j < 3; ++j)
-    {
-      frame(i, j) = c[j][i];
-    }
-  }
-  return frame;
+  return OrthonormalizeColumns(grid.direction);
 }
 
 void
@@ -118,66 +84,11 @@ CheckGrid(const PhantomGrid & grid)
   }
 }
 
-VectorType
-ToVector(const Vec3 & v)
-{
-  VectorType out;
-  out[0] = v[0];
-  out[1] = v[1];
-  out[2] = v[2];
-  return out;
-}
-
 /** A direction given in the grid's frame, normalised, in physical space. */
 Vec3
 GridDirection(const MatrixType & frame, double x, double y, double z)
 {
-  Vec3 v = MakeVec3(x, y, z);
-  v /= Norm(v);
-  return ToVec3(frame * ToVector(v));
-}
-
-MatrixType
-RotationZ(double degrees)
-{
-  const double a = degrees * DegreesToRadians;
-  MatrixType   r;
-  r.SetIdentity();
-  r(0, 0) = std::cos(a);
-  r(0, 1) = -std::sin(a);
-  r(1, 0) = std::sin(a);
-  r(1, 1) = std::cos(a);
-  return r;
-}
-
-MatrixType
-RotationX(double degrees)
-{
-  const double a = degrees * DegreesToRadians;
-  MatrixType   r;
-  r.SetIdentity();
-  r(1, 1) = std::cos(a);
-  r(1, 2) = -std::sin(a);
-  r(2, 1) = std::sin(a);
-  r(2, 2) = std::cos(a);
-  return r;
-}
-
-PointType
-Offset(const PointType & p, const Vec3 & v)
-{
-  PointType out;
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    out[i] = p[i] + v[i];
-  }
-  return out;
-}
-
-VectorType
-MakeVector(double x, double y, double z)
-{
-  return ToVector(MakeVec3(x, y, z));
+  return frame * Normalized(MakeVec3(x, y, z));
 }
 } // namespace
 
@@ -295,8 +206,8 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
     {
       const Vec3 normal = GridDirection(frame, 1.0, 2.0, 3.0);
       auto       plane = PlaneImplicitSurface::New();
-      plane->SetNormal(ToVector(normal));
-      plane->SetPoint(Offset(center, normal * (0.5 / std::sqrt(14.0) * smallestSpacing)));
+      plane->SetNormal(normal);
+      plane->SetPoint(center + normal * (0.5 / std::sqrt(14.0) * smallestSpacing));
       return plane.GetPointer();
     }
     case PhantomShape::Sphere:
@@ -311,8 +222,8 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
       const double radius = 0.25 * extent;
       const Vec3   axis = GridDirection(frame, 1.0, 1.0, 1.0);
       auto         spheres = SphereUnionImplicitSurface::New();
-      spheres->AddSphere(Offset(center, axis * (-0.5 * radius)), radius);
-      spheres->AddSphere(Offset(center, axis * (0.5 * radius)), radius);
+      spheres->AddSphere(center + axis * (-0.5 * radius), radius);
+      spheres->AddSphere(center + axis * (0.5 * radius), radius);
       return spheres.GetPointer();
     }
     case PhantomShape::Chapter4Sphere:
@@ -326,8 +237,8 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
     {
       auto ellipsoid = EllipsoidImplicitSurface::New();
       ellipsoid->SetCenter(center);
-      ellipsoid->SetSemiAxes(MakeVector(0.35 * extent, 0.25 * extent, 0.15 * extent));
-      ellipsoid->SetRotation(frame * RotationZ(30.0) * RotationX(20.0));
+      ellipsoid->SetSemiAxes(MakeVec3(0.35 * extent, 0.25 * extent, 0.15 * extent));
+      ellipsoid->SetRotation(frame * RotationAboutZ(30.0) * RotationAboutX(20.0));
       return ellipsoid.GetPointer();
     }
     case PhantomShape::IndentedSphere:
@@ -337,7 +248,7 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
       auto         indented = SphereDifferenceImplicitSurface::New();
       indented->SetCenterA(center);
       indented->SetRadiusA(radius);
-      indented->SetCenterB(Offset(center, axis * radius));
+      indented->SetCenterB(center + axis * radius);
       indented->SetRadiusB(0.5 * radius);
       return indented.GetPointer();
     }
@@ -345,7 +256,7 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
     {
       auto torus = TorusImplicitSurface::New();
       torus->SetCenter(center);
-      torus->SetAxis(ToVector(GridDirection(frame, 1.0, 1.0, 4.0)));
+      torus->SetAxis(GridDirection(frame, 1.0, 1.0, 4.0));
       torus->SetRadii(0.25 * extent, 0.1 * extent);
       return torus.GetPointer();
     }
@@ -353,21 +264,10 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
     {
       // Local frame of the plate in grid coordinates: normal n, first edge along the
       // grid's first axis projected onto the plate.
-      Vec3 n = MakeVec3(1.0, 2.0, 10.0);
-      n /= Norm(n);
-      Vec3 e0 = MakeVec3(1.0, 0.0, 0.0) - n * n[0];
-      e0 /= Norm(e0);
-      const Vec3 e1 = Cross(n, e0);
-      MatrixType local;
-      for (unsigned int i = 0; i < 3; ++i)
-      {
-        local(i, 0) = e0[i];
-        local(i, 1) = e1[i];
-        local(i, 2) = n[i];
-      }
-      auto plate = BoxImplicitSurface::New();
+      const MatrixType local = FrameFromNormal(Normalized(MakeVec3(1.0, 2.0, 10.0)), MakeVec3(1.0, 0.0, 0.0));
+      auto             plate = BoxImplicitSurface::New();
       plate->SetCenter(center);
-      plate->SetHalfSizes(MakeVector(0.35 * extent, 0.35 * extent, smallestSpacing));
+      plate->SetHalfSizes(MakeVec3(0.35 * extent, 0.35 * extent, smallestSpacing));
       plate->SetRotation(frame * local);
       return plate.GetPointer();
     }
@@ -376,7 +276,7 @@ MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
       auto cleft = NarrowCleftImplicitSurface::New();
       cleft->SetCenter(center);
       cleft->SetRotation(frame);
-      cleft->SetHalfSizes(MakeVector(0.3 * extent, 0.3 * extent, 0.2 * extent));
+      cleft->SetHalfSizes(MakeVec3(0.3 * extent, 0.3 * extent, 0.2 * extent));
       cleft->SetSlotWidth(1.5 * grid.spacing[0]);
       cleft->SetSlotDepth(0.24 * extent);
       cleft->VerifyParameters();
