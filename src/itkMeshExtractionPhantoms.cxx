@@ -16,7 +16,15 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionPhantoms.h"
+#include "itkBoxImplicitSurface.h"
+#include "itkEllipsoidImplicitSurface.h"
 #include "itkMeshExtractionClosedFormGeometry.h"
+#include "itkNarrowCleftImplicitSurface.h"
+#include "itkPlaneImplicitSurface.h"
+#include "itkSphereDifferenceImplicitSurface.h"
+#include "itkSphereImplicitSurface.h"
+#include "itkSphereUnionImplicitSurface.h"
+#include "itkTorusImplicitSurface.h"
 
 #include <algorithm>
 #include <cmath>
