@@ -199,97 +199,146 @@ PhantomGridSmallestExtent(const PhantomGrid & grid)
   return extent;
 }
 
+namespace
+{
+/** Where a phantom goes and how large it is (the placement rules of the header). */
+struct PhantomPlacement
+{
+  MatrixType frame;           // the grid's direction, orthonormalised
+  PointType  center;          // C
+  double     extent;          // E
+  double     smallestSpacing; // of the three axes
+  double     firstSpacing;    // along the grid's first axis
+};
+
+PhantomPlacement
+PlaceInGrid(const PhantomGrid & grid)
+{
+  CheckGrid(grid);
+  PhantomPlacement at;
+  at.frame = GridFrame(grid);
+  at.center = PhantomGridCenter(grid);
+  at.extent = PhantomGridSmallestExtent(grid);
+  at.smallestSpacing = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
+  at.firstSpacing = grid.spacing[0];
+  return at;
+}
+
+ImplicitSurfaceFunction::Pointer
+MakePlanePhantom(const PhantomPlacement & at)
+{
+  const Vec3 normal = GridDirection(at.frame, 1.0, 2.0, 3.0);
+  auto       plane = PlaneImplicitSurface::New();
+  plane->SetNormal(normal);
+  plane->SetPoint(at.center + normal * (0.5 / std::sqrt(14.0) * at.smallestSpacing));
+  return plane.GetPointer();
+}
+
+/** Sphere (radius 0.3 E) and Chapter4Sphere (0.25 E). */
+ImplicitSurfaceFunction::Pointer
+MakeSpherePhantom(const PhantomPlacement & at, double radiusFraction)
+{
+  auto sphere = SphereImplicitSurface::New();
+  sphere->SetCenter(at.center);
+  sphere->SetRadius(radiusFraction * at.extent);
+  return sphere.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeTwoSpheresPhantom(const PhantomPlacement & at)
+{
+  const double radius = 0.25 * at.extent;
+  const Vec3   axis = GridDirection(at.frame, 1.0, 1.0, 1.0);
+  auto         spheres = SphereUnionImplicitSurface::New();
+  spheres->AddSphere(at.center + axis * (-0.5 * radius), radius);
+  spheres->AddSphere(at.center + axis * (0.5 * radius), radius);
+  return spheres.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeEllipsoidPhantom(const PhantomPlacement & at)
+{
+  auto ellipsoid = EllipsoidImplicitSurface::New();
+  ellipsoid->SetCenter(at.center);
+  ellipsoid->SetSemiAxes(MakeVec3(0.35 * at.extent, 0.25 * at.extent, 0.15 * at.extent));
+  ellipsoid->SetRotation(at.frame * RotationAboutZ(30.0) * RotationAboutX(20.0));
+  return ellipsoid.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeIndentedSpherePhantom(const PhantomPlacement & at)
+{
+  const double radius = 0.3 * at.extent;
+  const Vec3   axis = GridDirection(at.frame, 1.0, 1.0, 1.0);
+  auto         indented = SphereDifferenceImplicitSurface::New();
+  indented->SetCenterA(at.center);
+  indented->SetRadiusA(radius);
+  indented->SetCenterB(at.center + axis * radius);
+  indented->SetRadiusB(0.5 * radius);
+  return indented.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeTorusPhantom(const PhantomPlacement & at)
+{
+  auto torus = TorusImplicitSurface::New();
+  torus->SetCenter(at.center);
+  torus->SetAxis(GridDirection(at.frame, 1.0, 1.0, 4.0));
+  torus->SetRadii(0.25 * at.extent, 0.1 * at.extent);
+  return torus.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeThinPlatePhantom(const PhantomPlacement & at)
+{
+  // The plate's frame in grid coordinates: normal n, first edge along the grid's first
+  // axis projected onto the plate.
+  const MatrixType local = FrameFromNormal(Normalized(MakeVec3(1.0, 2.0, 10.0)), MakeVec3(1.0, 0.0, 0.0));
+  auto             plate = BoxImplicitSurface::New();
+  plate->SetCenter(at.center);
+  plate->SetHalfSizes(MakeVec3(0.35 * at.extent, 0.35 * at.extent, at.smallestSpacing));
+  plate->SetRotation(at.frame * local);
+  return plate.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeNarrowCleftPhantom(const PhantomPlacement & at)
+{
+  auto cleft = NarrowCleftImplicitSurface::New();
+  cleft->SetCenter(at.center);
+  cleft->SetRotation(at.frame);
+  cleft->SetHalfSizes(MakeVec3(0.3 * at.extent, 0.3 * at.extent, 0.2 * at.extent));
+  cleft->SetSlotWidth(1.5 * at.firstSpacing);
+  cleft->SetSlotDepth(0.24 * at.extent);
+  cleft->VerifyParameters();
+  return cleft.GetPointer();
+}
+} // namespace
+
 ImplicitSurfaceFunction::Pointer
 MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
 {
-  CheckGrid(grid);
-  const MatrixType frame = GridFrame(grid);
-  const PointType  center = PhantomGridCenter(grid);
-  const double     extent = PhantomGridSmallestExtent(grid);
-  const double     smallestSpacing = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
-
+  const PhantomPlacement at = PlaceInGrid(grid);
   switch (shape)
   {
     case PhantomShape::Plane:
-    {
-      const Vec3 normal = GridDirection(frame, 1.0, 2.0, 3.0);
-      auto       plane = PlaneImplicitSurface::New();
-      plane->SetNormal(normal);
-      plane->SetPoint(center + normal * (0.5 / std::sqrt(14.0) * smallestSpacing));
-      return plane.GetPointer();
-    }
+      return MakePlanePhantom(at);
     case PhantomShape::Sphere:
-    {
-      auto sphere = SphereImplicitSurface::New();
-      sphere->SetCenter(center);
-      sphere->SetRadius(0.3 * extent);
-      return sphere.GetPointer();
-    }
+      return MakeSpherePhantom(at, 0.3);
     case PhantomShape::TwoSpheres:
-    {
-      const double radius = 0.25 * extent;
-      const Vec3   axis = GridDirection(frame, 1.0, 1.0, 1.0);
-      auto         spheres = SphereUnionImplicitSurface::New();
-      spheres->AddSphere(center + axis * (-0.5 * radius), radius);
-      spheres->AddSphere(center + axis * (0.5 * radius), radius);
-      return spheres.GetPointer();
-    }
+      return MakeTwoSpheresPhantom(at);
     case PhantomShape::Chapter4Sphere:
-    {
-      auto sphere = SphereImplicitSurface::New();
-      sphere->SetCenter(center);
-      sphere->SetRadius(0.25 * extent);
-      return sphere.GetPointer();
-    }
+      return MakeSpherePhantom(at, 0.25);
     case PhantomShape::Ellipsoid:
-    {
-      auto ellipsoid = EllipsoidImplicitSurface::New();
-      ellipsoid->SetCenter(center);
-      ellipsoid->SetSemiAxes(MakeVec3(0.35 * extent, 0.25 * extent, 0.15 * extent));
-      ellipsoid->SetRotation(frame * RotationAboutZ(30.0) * RotationAboutX(20.0));
-      return ellipsoid.GetPointer();
-    }
+      return MakeEllipsoidPhantom(at);
     case PhantomShape::IndentedSphere:
-    {
-      const double radius = 0.3 * extent;
-      const Vec3   axis = GridDirection(frame, 1.0, 1.0, 1.0);
-      auto         indented = SphereDifferenceImplicitSurface::New();
-      indented->SetCenterA(center);
-      indented->SetRadiusA(radius);
-      indented->SetCenterB(center + axis * radius);
-      indented->SetRadiusB(0.5 * radius);
-      return indented.GetPointer();
-    }
+      return MakeIndentedSpherePhantom(at);
     case PhantomShape::Torus:
-    {
-      auto torus = TorusImplicitSurface::New();
-      torus->SetCenter(center);
-      torus->SetAxis(GridDirection(frame, 1.0, 1.0, 4.0));
-      torus->SetRadii(0.25 * extent, 0.1 * extent);
-      return torus.GetPointer();
-    }
+      return MakeTorusPhantom(at);
     case PhantomShape::ThinPlate:
-    {
-      // Local frame of the plate in grid coordinates: normal n, first edge along the
-      // grid's first axis projected onto the plate.
-      const MatrixType local = FrameFromNormal(Normalized(MakeVec3(1.0, 2.0, 10.0)), MakeVec3(1.0, 0.0, 0.0));
-      auto             plate = BoxImplicitSurface::New();
-      plate->SetCenter(center);
-      plate->SetHalfSizes(MakeVec3(0.35 * extent, 0.35 * extent, smallestSpacing));
-      plate->SetRotation(frame * local);
-      return plate.GetPointer();
-    }
+      return MakeThinPlatePhantom(at);
     case PhantomShape::NarrowCleft:
-    {
-      auto cleft = NarrowCleftImplicitSurface::New();
-      cleft->SetCenter(center);
-      cleft->SetRotation(frame);
-      cleft->SetHalfSizes(MakeVec3(0.3 * extent, 0.3 * extent, 0.2 * extent));
-      cleft->SetSlotWidth(1.5 * grid.spacing[0]);
-      cleft->SetSlotDepth(0.24 * extent);
-      cleft->VerifyParameters();
-      return cleft.GetPointer();
-    }
+      return MakeNarrowCleftPhantom(at);
   }
   itkGenericExceptionMacro(<< "Unknown PhantomShape " << static_cast<int>(shape)
                            << "; valid names are: " << PhantomShapeNameList());
