@@ -33,11 +33,14 @@ using namespace ImplicitSurfaceTest;
 
 namespace
 {
-/** Named surfaces covering every class, with rotations and offsets. */
-std::vector<std::pair<std::string, SurfaceType::Pointer>>
-AllSurfaces()
+using NamedSurfaces = std::vector<std::pair<std::string, SurfaceType::Pointer>>;
+
+/** The single shapes: plane, sphere, ellipsoids (with ties in the axis order), torus
+ * and box, with rotations and offsets. */
+NamedSurfaces
+SingleShapeSurfaces()
 {
-  std::vector<std::pair<std::string, SurfaceType::Pointer>> surfaces;
+  NamedSurfaces surfaces;
   {
     auto s = itk::PlaneImplicitSurface::New();
     s->SetPoint(P(1, -2, 0.5));
@@ -81,6 +84,14 @@ AllSurfaces()
     s->SetRotation(Rotation(0.2, 0.4, -0.3));
     surfaces.emplace_back("box", s.GetPointer());
   }
+  return surfaces;
+}
+
+/** The composite shapes: unions and differences of balls and the narrow cleft. */
+NamedSurfaces
+CompositeSurfaces()
+{
+  NamedSurfaces surfaces;
   {
     auto s = itk::SphereUnionImplicitSurface::New();
     s->AddSphere(P(0, 0, 0), 2);
@@ -120,6 +131,17 @@ AllSurfaces()
     s->SetRotation(Rotation(-0.4, 0.25, 0.6));
     surfaces.emplace_back("narrow cleft", s.GetPointer());
   }
+  return surfaces;
+}
+
+/** Named surfaces covering every class, with rotations and offsets, and every
+ * phantom. */
+NamedSurfaces
+AllSurfaces()
+{
+  NamedSurfaces surfaces = SingleShapeSurfaces();
+  const auto    composite = CompositeSurfaces();
+  surfaces.insert(surfaces.end(), composite.begin(), composite.end());
   for (const auto shape : itk::MeshExtraction::AllPhantomShapes())
   {
     std::ostringstream name;

@@ -59,17 +59,16 @@ TEST(NarrowCleftImplicitSurface, RotationAndTranslationMoveTheDistanceField)
   }
 }
 
-TEST(NarrowCleftImplicitSurface, BruteForceSamplingAgreesWithTheExactDistance)
+namespace
 {
-  auto cleft = itk::NarrowCleftImplicitSurface::New();
-  cleft->SetHalfSizes(V(5, 4, 3));
-  cleft->SetSlotWidth(1.5);
-  cleft->SetSlotDepth(4);
+/** Grid points, `h` apart, of the boundary of the block |x| <= X, |y| <= Y, |z| <= Z
+ * without the slot |x| < s, z > f. */
+std::vector<PointType>
+SampleNarrowCleftBoundary(double X, double Y, double Z, double s, double f, double h)
+{
   // Sample the boundary of the solid: every grid point of the bounding box's faces
   // and of the slot's faces that is on the boundary (|Evaluate| tiny is not used:
   // membership is decided geometrically).
-  const double           X = 5, Y = 4, Z = 3, s = 0.75, f = Z - 4;
-  const double           h = 0.05;
   std::vector<PointType> samples;
   const auto             inSolid = [&](double x, double y, double z) {
     const bool inBlock = std::abs(x) <= X && std::abs(y) <= Y && std::abs(z) <= Z;
@@ -136,7 +135,20 @@ TEST(NarrowCleftImplicitSurface, BruteForceSamplingAgreesWithTheExactDistance)
       boundary.push_back(p);
     }
   }
-  auto queries = RandomPointsAround(*cleft, 80, 92);
+  return boundary;
+}
+} // namespace
+
+TEST(NarrowCleftImplicitSurface, BruteForceSamplingAgreesWithTheExactDistance)
+{
+  auto cleft = itk::NarrowCleftImplicitSurface::New();
+  cleft->SetHalfSizes(V(5, 4, 3));
+  cleft->SetSlotWidth(1.5);
+  cleft->SetSlotDepth(4);
+  const double X = 5, Y = 4, Z = 3, s = 0.75, f = Z - 4;
+  const double h = 0.05;
+  const auto   boundary = SampleNarrowCleftBoundary(X, Y, Z, s, f, h);
+  auto         queries = RandomPointsAround(*cleft, 80, 92);
   for (const PointType & special : { P(0, 0, 2), P(0, 0, -0.5), P(1, 0, 1.5), P(0, 5, 2), P(0.8, 3.9, -0.9) })
   {
     queries.push_back(special);
