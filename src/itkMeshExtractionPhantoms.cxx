@@ -16,7 +16,15 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionPhantoms.h"
-#include "itkMeshExtractionTriangleGeometry.h"
+#include "itkBoxImplicitSurface.h"
+#include "itkEllipsoidImplicitSurface.h"
+#include "itkMeshExtractionClosedFormGeometry.h"
+#include "itkNarrowCleftImplicitSurface.h"
+#include "itkPlaneImplicitSurface.h"
+#include "itkSphereDifferenceImplicitSurface.h"
+#include "itkSphereImplicitSurface.h"
+#include "itkSphereUnionImplicitSurface.h"
+#include "itkTorusImplicitSurface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,51 +59,17 @@ using PointType = ImplicitSurfaceFunction::InputType;
 using VectorType = ImplicitSurfaceFunction::VectorType;
 using MatrixType = ImplicitSurfaceFunction::MatrixType;
 
-constexpr double DegreesToRadians = 3.14159265358979323846 / 180.0;
-
 /** The grid's direction, checked orthogonal within 1e-4 and orthonormalised. */
 MatrixType
 GridFrame(const PhantomGrid & grid)
 {
-  double maximumError = 0.0;
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    for (unsigned int j = 0; j < 3; ++j)
-    {
-      double dot = 0.0;
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        dot += grid.direction(k, i) * grid.direction(k, j);
-      }
-      const double error = std::abs(dot - (i == j ? 1.0 : 0.0));
-      maximumError = std::isfinite(error) ? std::max(maximumError, error) : 1e300;
-    }
-  }
+  const double maximumError = OrthogonalityError(grid.direction);
   if (!(maximumError <= 1e-4))
   {
     itkGenericExceptionMacro(<< "PhantomGrid direction must be orthogonal (max |D^T D - I| <= 1e-4), got\n"
                              << grid.direction << "with max |D^T D - I| = " << maximumError);
   }
-  Vec3 c[3];
-  for (unsigned int j = 0; j < 3; ++j)
-  {
-    c[j] = MakeVec3(grid.direction(0, j), grid.direction(1, j), grid.direction(2, j));
-  }
-  c[0] /= Norm(c[0]);
-  c[1] -= c[0] * Dot(c[1], c[0]);
-  c[1] /= Norm(c[1]);
-  c[2] -= c[0] * Dot(c[2], c[0]);
-  c[2] -= c[1] * Dot(c[2], c[1]);
-  c[2] /= Norm(c[2]);
-  MatrixType frame;
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    for (unsigned int j = 0; j < 3; ++j)
-    {
-      frame(i, j) = c[j][i];
-    }
-  }
-  return frame;
+  return OrthonormalizeColumns(grid.direction);
 }
 
 void
@@ -118,66 +92,11 @@ CheckGrid(const PhantomGrid & grid)
   }
 }
 
-VectorType
-ToVector(const Vec3 & v)
-{
-  VectorType out;
-  out[0] = v[0];
-  out[1] = v[1];
-  out[2] = v[2];
-  return out;
-}
-
 /** A direction given in the grid's frame, normalised, in physical space. */
 Vec3
 GridDirection(const MatrixType & frame, double x, double y, double z)
 {
-  Vec3 v = MakeVec3(x, y, z);
-  v /= Norm(v);
-  return ToVec3(frame * ToVector(v));
-}
-
-MatrixType
-RotationZ(double degrees)
-{
-  const double a = degrees * DegreesToRadians;
-  MatrixType   r;
-  r.SetIdentity();
-  r(0, 0) = std::cos(a);
-  r(0, 1) = -std::sin(a);
-  r(1, 0) = std::sin(a);
-  r(1, 1) = std::cos(a);
-  return r;
-}
-
-MatrixType
-RotationX(double degrees)
-{
-  const double a = degrees * DegreesToRadians;
-  MatrixType   r;
-  r.SetIdentity();
-  r(1, 1) = std::cos(a);
-  r(1, 2) = -std::sin(a);
-  r(2, 1) = std::sin(a);
-  r(2, 2) = std::cos(a);
-  return r;
-}
-
-PointType
-Offset(const PointType & p, const Vec3 & v)
-{
-  PointType out;
-  for (unsigned int i = 0; i < 3; ++i)
-  {
-    out[i] = p[i] + v[i];
-  }
-  return out;
-}
-
-VectorType
-MakeVector(double x, double y, double z)
-{
-  return ToVector(MakeVec3(x, y, z));
+  return frame * Normalized(MakeVec3(x, y, z));
 }
 } // namespace
 
@@ -280,108 +199,146 @@ PhantomGridSmallestExtent(const PhantomGrid & grid)
   return extent;
 }
 
+namespace
+{
+/** Where a phantom goes and how large it is (the placement rules of the header). */
+struct PhantomPlacement
+{
+  MatrixType frame;           // the grid's direction, orthonormalised
+  PointType  center;          // C
+  double     extent;          // E
+  double     smallestSpacing; // of the three axes
+  double     firstSpacing;    // along the grid's first axis
+};
+
+PhantomPlacement
+PlaceInGrid(const PhantomGrid & grid)
+{
+  CheckGrid(grid);
+  PhantomPlacement at;
+  at.frame = GridFrame(grid);
+  at.center = PhantomGridCenter(grid);
+  at.extent = PhantomGridSmallestExtent(grid);
+  at.smallestSpacing = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
+  at.firstSpacing = grid.spacing[0];
+  return at;
+}
+
+ImplicitSurfaceFunction::Pointer
+MakePlanePhantom(const PhantomPlacement & at)
+{
+  const Vec3 normal = GridDirection(at.frame, 1.0, 2.0, 3.0);
+  auto       plane = PlaneImplicitSurface::New();
+  plane->SetNormal(normal);
+  plane->SetPoint(at.center + normal * (0.5 / std::sqrt(14.0) * at.smallestSpacing));
+  return plane.GetPointer();
+}
+
+/** Sphere (radius 0.3 E) and Chapter4Sphere (0.25 E). */
+ImplicitSurfaceFunction::Pointer
+MakeSpherePhantom(const PhantomPlacement & at, double radiusFraction)
+{
+  auto sphere = SphereImplicitSurface::New();
+  sphere->SetCenter(at.center);
+  sphere->SetRadius(radiusFraction * at.extent);
+  return sphere.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeTwoSpheresPhantom(const PhantomPlacement & at)
+{
+  const double radius = 0.25 * at.extent;
+  const Vec3   axis = GridDirection(at.frame, 1.0, 1.0, 1.0);
+  auto         spheres = SphereUnionImplicitSurface::New();
+  spheres->AddSphere(at.center + axis * (-0.5 * radius), radius);
+  spheres->AddSphere(at.center + axis * (0.5 * radius), radius);
+  return spheres.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeEllipsoidPhantom(const PhantomPlacement & at)
+{
+  auto ellipsoid = EllipsoidImplicitSurface::New();
+  ellipsoid->SetCenter(at.center);
+  ellipsoid->SetSemiAxes(MakeVec3(0.35 * at.extent, 0.25 * at.extent, 0.15 * at.extent));
+  ellipsoid->SetRotation(at.frame * RotationAboutZ(30.0) * RotationAboutX(20.0));
+  return ellipsoid.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeIndentedSpherePhantom(const PhantomPlacement & at)
+{
+  const double radius = 0.3 * at.extent;
+  const Vec3   axis = GridDirection(at.frame, 1.0, 1.0, 1.0);
+  auto         indented = SphereDifferenceImplicitSurface::New();
+  indented->SetCenterA(at.center);
+  indented->SetRadiusA(radius);
+  indented->SetCenterB(at.center + axis * radius);
+  indented->SetRadiusB(0.5 * radius);
+  return indented.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeTorusPhantom(const PhantomPlacement & at)
+{
+  auto torus = TorusImplicitSurface::New();
+  torus->SetCenter(at.center);
+  torus->SetAxis(GridDirection(at.frame, 1.0, 1.0, 4.0));
+  torus->SetRadii(0.25 * at.extent, 0.1 * at.extent);
+  return torus.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeThinPlatePhantom(const PhantomPlacement & at)
+{
+  // The plate's frame in grid coordinates: normal n, first edge along the grid's first
+  // axis projected onto the plate.
+  const MatrixType local = FrameFromNormal(Normalized(MakeVec3(1.0, 2.0, 10.0)), MakeVec3(1.0, 0.0, 0.0));
+  auto             plate = BoxImplicitSurface::New();
+  plate->SetCenter(at.center);
+  plate->SetHalfSizes(MakeVec3(0.35 * at.extent, 0.35 * at.extent, at.smallestSpacing));
+  plate->SetRotation(at.frame * local);
+  return plate.GetPointer();
+}
+
+ImplicitSurfaceFunction::Pointer
+MakeNarrowCleftPhantom(const PhantomPlacement & at)
+{
+  auto cleft = NarrowCleftImplicitSurface::New();
+  cleft->SetCenter(at.center);
+  cleft->SetRotation(at.frame);
+  cleft->SetHalfSizes(MakeVec3(0.3 * at.extent, 0.3 * at.extent, 0.2 * at.extent));
+  cleft->SetSlotWidth(1.5 * at.firstSpacing);
+  cleft->SetSlotDepth(0.24 * at.extent);
+  cleft->VerifyParameters();
+  return cleft.GetPointer();
+}
+} // namespace
+
 ImplicitSurfaceFunction::Pointer
 MakePhantomSurface(PhantomShape shape, const PhantomGrid & grid)
 {
-  CheckGrid(grid);
-  const MatrixType frame = GridFrame(grid);
-  const PointType  center = PhantomGridCenter(grid);
-  const double     extent = PhantomGridSmallestExtent(grid);
-  const double     smallestSpacing = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
-
+  const PhantomPlacement at = PlaceInGrid(grid);
   switch (shape)
   {
     case PhantomShape::Plane:
-    {
-      const Vec3 normal = GridDirection(frame, 1.0, 2.0, 3.0);
-      auto       plane = PlaneImplicitSurface::New();
-      plane->SetNormal(ToVector(normal));
-      plane->SetPoint(Offset(center, normal * (0.5 / std::sqrt(14.0) * smallestSpacing)));
-      return plane.GetPointer();
-    }
+      return MakePlanePhantom(at);
     case PhantomShape::Sphere:
-    {
-      auto sphere = SphereImplicitSurface::New();
-      sphere->SetCenter(center);
-      sphere->SetRadius(0.3 * extent);
-      return sphere.GetPointer();
-    }
+      return MakeSpherePhantom(at, 0.3);
     case PhantomShape::TwoSpheres:
-    {
-      const double radius = 0.25 * extent;
-      const Vec3   axis = GridDirection(frame, 1.0, 1.0, 1.0);
-      auto         spheres = SphereUnionImplicitSurface::New();
-      spheres->AddSphere(Offset(center, axis * (-0.5 * radius)), radius);
-      spheres->AddSphere(Offset(center, axis * (0.5 * radius)), radius);
-      return spheres.GetPointer();
-    }
+      return MakeTwoSpheresPhantom(at);
     case PhantomShape::Chapter4Sphere:
-    {
-      auto sphere = SphereImplicitSurface::New();
-      sphere->SetCenter(center);
-      sphere->SetRadius(0.25 * extent);
-      return sphere.GetPointer();
-    }
+      return MakeSpherePhantom(at, 0.25);
     case PhantomShape::Ellipsoid:
-    {
-      auto ellipsoid = EllipsoidImplicitSurface::New();
-      ellipsoid->SetCenter(center);
-      ellipsoid->SetSemiAxes(MakeVector(0.35 * extent, 0.25 * extent, 0.15 * extent));
-      ellipsoid->SetRotation(frame * RotationZ(30.0) * RotationX(20.0));
-      return ellipsoid.GetPointer();
-    }
+      return MakeEllipsoidPhantom(at);
     case PhantomShape::IndentedSphere:
-    {
-      const double radius = 0.3 * extent;
-      const Vec3   axis = GridDirection(frame, 1.0, 1.0, 1.0);
-      auto         indented = SphereDifferenceImplicitSurface::New();
-      indented->SetCenterA(center);
-      indented->SetRadiusA(radius);
-      indented->SetCenterB(Offset(center, axis * radius));
-      indented->SetRadiusB(0.5 * radius);
-      return indented.GetPointer();
-    }
+      return MakeIndentedSpherePhantom(at);
     case PhantomShape::Torus:
-    {
-      auto torus = TorusImplicitSurface::New();
-      torus->SetCenter(center);
-      torus->SetAxis(ToVector(GridDirection(frame, 1.0, 1.0, 4.0)));
-      torus->SetRadii(0.25 * extent, 0.1 * extent);
-      return torus.GetPointer();
-    }
+      return MakeTorusPhantom(at);
     case PhantomShape::ThinPlate:
-    {
-      // Local frame of the plate in grid coordinates: normal n, first edge along the
-      // grid's first axis projected onto the plate.
-      Vec3 n = MakeVec3(1.0, 2.0, 10.0);
-      n /= Norm(n);
-      Vec3 e0 = MakeVec3(1.0, 0.0, 0.0) - n * n[0];
-      e0 /= Norm(e0);
-      const Vec3 e1 = Cross(n, e0);
-      MatrixType local;
-      for (unsigned int i = 0; i < 3; ++i)
-      {
-        local(i, 0) = e0[i];
-        local(i, 1) = e1[i];
-        local(i, 2) = n[i];
-      }
-      auto plate = BoxImplicitSurface::New();
-      plate->SetCenter(center);
-      plate->SetHalfSizes(MakeVector(0.35 * extent, 0.35 * extent, smallestSpacing));
-      plate->SetRotation(frame * local);
-      return plate.GetPointer();
-    }
+      return MakeThinPlatePhantom(at);
     case PhantomShape::NarrowCleft:
-    {
-      auto cleft = NarrowCleftImplicitSurface::New();
-      cleft->SetCenter(center);
-      cleft->SetRotation(frame);
-      cleft->SetHalfSizes(MakeVector(0.3 * extent, 0.3 * extent, 0.2 * extent));
-      cleft->SetSlotWidth(1.5 * grid.spacing[0]);
-      cleft->SetSlotDepth(0.24 * extent);
-      cleft->VerifyParameters();
-      return cleft.GetPointer();
-    }
+      return MakeNarrowCleftPhantom(at);
   }
   itkGenericExceptionMacro(<< "Unknown PhantomShape " << static_cast<int>(shape)
                            << "; valid names are: " << PhantomShapeNameList());

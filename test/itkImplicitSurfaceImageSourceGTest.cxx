@@ -16,7 +16,11 @@
  *
  *=========================================================================*/
 #include "itkImplicitSurfaceImageSource.h"
+#include "itkBoxImplicitSurface.h"
 #include "itkMeshExtractionPhantoms.h"
+#include "itkPlaneImplicitSurface.h"
+#include "itkSphereImplicitSurface.h"
+#include "itkTorusImplicitSurface.h"
 #include "itkImage.h"
 #include "itkImageRegionConstIteratorWithIndex.h"
 #include "itkMultiThreaderBase.h"
