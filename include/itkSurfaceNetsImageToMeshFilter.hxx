@@ -24,7 +24,7 @@
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
-#include "itkMeshExtractionSurfaceNetsImprovement.h"
+#include "itkMeshExtractionClosedSurfaceEdgeSwap.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMinimumMaximumImageCalculator.h"
