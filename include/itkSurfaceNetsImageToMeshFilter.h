@@ -264,10 +264,12 @@ protected:
   RelaxNet(RelaxationEnum                         relaxation,
            unsigned int                           iterations,
            MeshExtraction::SurfaceNetsCellCache * cellCache = nullptr);
-  /** Stage 5 (high-quality mode): swaps and relaxation on the triangles. */
+  /** Stage 5, the high-quality mode (MeshExtraction::SurfaceNetsHighQuality): swaps
+   * and relaxation (RelaxNet) on the triangles, every change checked by the validity
+   * guard. */
   void
-  ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles,
-                   MeshExtraction::SurfaceNetsCellCache *         cellCache);
+  RunHighQualityMode(std::vector<MeshExtraction::TriangleIndices> & triangles,
+                     MeshExtraction::SurfaceNetsCellCache *         cellCache);
   /** Stage 4: the faces (node indices) with the nodes in physical space, into the
    * output mesh. `points`: the nodes' physical points if already made (the face
    * split made them), else null. */
