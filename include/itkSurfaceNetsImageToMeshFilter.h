@@ -153,44 +153,76 @@ public:
    * after the SNERT relaxation, rounds of regularity edge swaps (the decision of
    * EdgeSwapQuadEdgeMeshFilter) followed by SNERT relaxation on the triangle mesh's
    * 1-rings, every node on the iso-surface and near its own cell (see
-   * ImprovementCellDilation). Swaps and moves that would flip, degenerate or cross a
-   * triangle are undone, so the output keeps every guarantee of plain SurfaceNets.
-   * Needs triangles. On strongly anisotropic voxels (ratio above ~1.15) one node per
-   * cell cannot be spaced evenly in physical space: quality stays below the
-   * isotropic figures unless the image is resampled first (ResampleToIsotropicVoxels). */
+   * HighQualityCellDilation); MeshExtraction::SurfaceNetsHighQuality. Swaps and moves
+   * that would flip, degenerate or cross a triangle, or collapse a component, are
+   * undone (the validity guard, itkMeshExtractionValidityGuard.h), so the output keeps
+   * every guarantee of plain SurfaceNets. Needs triangles. On strongly anisotropic
+   * voxels one node per cell cannot be spaced evenly in physical space: quality stays
+   * below that on cubic voxels unless the image is resampled first
+   * (ResampleToIsotropicVoxels). */
   itkSetMacro(HighQuality, bool);
   itkGetConstMacro(HighQuality, bool);
   itkBooleanMacro(HighQuality);
   /** Rounds of swaps and relaxation in high-quality mode (default 8); a round whose
-   * swaps are fewer than ConvergedSwapFraction of the triangles (after the first)
-   * ends them early. Then a Delaunay swap pass and a last relaxation, which also gets
-   * the iterations of the round that ended them early. */
-  itkSetMacro(NumberOfImprovementRounds, unsigned int);
-  itkGetConstMacro(NumberOfImprovementRounds, unsigned int);
+   * swaps are fewer than ConvergedSwapFraction of the triangles (after the first) ends
+   * them early. Then Delaunay swap sweeps and a last relaxation, which also gets the
+   * iterations of the round that ended them early. */
+  itkSetMacro(NumberOfHighQualityRounds, unsigned int);
+  itkGetConstMacro(NumberOfHighQualityRounds, unsigned int);
   /** The rounds of the high-quality mode have converged when a round's regularity swaps
    * are fewer than this fraction of the triangles (default 0.001; 0: only a round
-   * without any swap ends them). Measured on the head CT of the README (671,368
-   * triangles, iso-value 300): the rounds swapped 34,758, 7,987, 1,327, 251, 48, 12, 2
-   * and 1 edges, and the mesh after three rounds (mean q_area 0.9273, q_angle 0.6480)
-   * is as good as after eight (0.9272, 0.6484), in half the time. */
+   * without any swap ends them). The swaps fall off quickly from round to round, and
+   * once they are this few the mesh hardly changes any more: the remaining rounds would
+   * cost time and give nothing. */
   itkSetMacro(ConvergedSwapFraction, double);
   itkGetConstMacro(ConvergedSwapFraction, double);
   /** SNERT iterations per round in high-quality mode (default 4). */
-  itkSetMacro(ImprovementIterations, unsigned int);
-  itkGetConstMacro(ImprovementIterations, unsigned int);
+  itkSetMacro(HighQualityIterations, unsigned int);
+  itkGetConstMacro(HighQualityIterations, unsigned int);
   /** In high-quality mode a node may leave its cell by this much (voxels, default
    * 0.5, the most allowed): the swaps and the validity checks, not the cells, then keep
-   * the mesh valid. 0 keeps every node in its cell (plain SurfaceNets' constraint);
-   * measured on the sphere of radius 19 voxels, 0.25 raises mean q_angle from 0.81 to
-   * 0.85, removes the last slivers and lowers the largest vertex error from 0.075 to
-   * 0.017 voxel. 0.5 against 0.25 (`meshextraction extract ... --quality high
-   * --report`): mean q_angle 0.6647 against 0.6493 and triangles below q_angle 0.3
-   * 1.74 % against 2.21 % on the README's head CT at 300 HU, 0.6596 against 0.6289 and
-   * none against 0.0125 % on the narrow cleft, 0.7587 against 0.7351 on the ellipsoid
-   * with 1x1x2.5 mm voxels, 0.8384 against 0.8362 on the 128^3 sphere; mean vertex
-   * distances to the exact surfaces within 5 % of each other. */
-  itkSetMacro(ImprovementCellDilation, double);
-  itkGetConstMacro(ImprovementCellDilation, double);
+   * the mesh valid. 0 keeps every node in its cell (plain SurfaceNets' constraint). A
+   * node that may leave its cell reaches the iso-surface near the cell's corners and
+   * spaces out more evenly, so a larger dilation gives better angles, fewer slivers and
+   * a smaller largest vertex error, while the mean distance to the surface stays
+   * about the same. */
+  itkSetMacro(HighQualityCellDilation, double);
+  itkGetConstMacro(HighQualityCellDilation, double);
+#if !defined(ITK_LEGACY_REMOVE)
+  /** \deprecated The high-quality settings' earlier names: use
+   * Set/GetNumberOfHighQualityRounds, Set/GetHighQualityIterations and
+   * Set/GetHighQualityCellDilation. */
+  void
+  SetNumberOfImprovementRounds(unsigned int rounds)
+  {
+    this->SetNumberOfHighQualityRounds(rounds);
+  }
+  unsigned int
+  GetNumberOfImprovementRounds() const
+  {
+    return this->GetNumberOfHighQualityRounds();
+  }
+  void
+  SetImprovementIterations(unsigned int iterations)
+  {
+    this->SetHighQualityIterations(iterations);
+  }
+  unsigned int
+  GetImprovementIterations() const
+  {
+    return this->GetHighQualityIterations();
+  }
+  void
+  SetImprovementCellDilation(double dilation)
+  {
+    this->SetHighQualityCellDilation(dilation);
+  }
+  double
+  GetImprovementCellDilation() const
+  {
+    return this->GetHighQualityCellDilation();
+  }
+#endif
   /** Undo relaxation where faces would cross (default on): nodes of crossing
    * faces move back toward their cell centres until the mesh is free of
    * self-intersections (see GetNumberOfNodesMovedBack). */
@@ -231,7 +263,7 @@ public:
   itkGetConstMacro(NumberOfNodes, SizeValueType);
   itkGetConstMacro(NumberOfSplitCells, SizeValueType);
   itkGetConstMacro(NumberOfNodesMovedBack, SizeValueType);
-  /** After Update() in high-quality mode: swaps kept, and improvement rounds run
+  /** After Update() in high-quality mode: swaps kept, and high-quality rounds run
    * (those that swapped and relaxed; the last relaxation not counted). */
   itkGetConstMacro(NumberOfSwaps, SizeValueType);
   itkGetConstMacro(NumberOfRoundsPerformed, unsigned int);
@@ -317,10 +349,10 @@ private:
   double            m_CellMargin{ 0.01 };
   bool              m_PreventSelfIntersections{ true };
   bool              m_HighQuality{ false };
-  unsigned int      m_NumberOfImprovementRounds{ 8 };
+  unsigned int      m_NumberOfHighQualityRounds{ 8 };
   double            m_ConvergedSwapFraction{ 0.001 };
-  unsigned int      m_ImprovementIterations{ 4 };
-  double            m_ImprovementCellDilation{ 0.5 };
+  unsigned int      m_HighQualityIterations{ 4 };
+  double            m_HighQualityCellDilation{ 0.5 };
   bool              m_ResampleToIsotropicVoxels{ false };
 
   typename InputImageType::ConstPointer m_SampledInput;      // while GenerateData runs

@@ -72,9 +72,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
   {
     itkExceptionMacro("HighQuality swaps edges of triangles: it cannot keep Quadrilaterals.");
   }
-  if (!(m_ImprovementCellDilation >= 0.0 && m_ImprovementCellDilation <= 0.5))
+  if (!(m_HighQualityCellDilation >= 0.0 && m_HighQualityCellDilation <= 0.5))
   {
-    itkExceptionMacro("ImprovementCellDilation must be in [0, 0.5] voxels, got " << m_ImprovementCellDilation << '.');
+    itkExceptionMacro("HighQualityCellDilation must be in [0, 0.5] voxels, got " << m_HighQualityCellDilation << '.');
   }
   if (!(m_ConvergedSwapFraction >= 0.0 && m_ConvergedSwapFraction <= 1.0))
   {
@@ -280,9 +280,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
   Vec3                 first;
   this->GetGeometry(M, first);
   SurfaceNetsHighQualityParameters parameters;
-  parameters.numberOfRounds = m_NumberOfImprovementRounds;
-  parameters.iterations = m_ImprovementIterations;
-  parameters.cellDilation = m_ImprovementCellDilation;
+  parameters.numberOfRounds = m_NumberOfHighQualityRounds;
+  parameters.iterations = m_HighQualityIterations;
+  parameters.cellDilation = m_HighQualityCellDilation;
   parameters.convergedSwapFraction = m_ConvergedSwapFraction;
   parameters.roundToFloat = std::is_same<typename OutputMeshType::PointType::ValueType, float>::value;
   const RelaxationEnum   relaxation = m_ClassifyByLabel ? RelaxationEnum::Averaging : RelaxationEnum::Combined;
@@ -293,7 +293,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
     parameters,
     [this, relaxation, cellCache](unsigned int iterations) { this->RelaxNet(relaxation, iterations, cellCache); },
     [this](unsigned int roundsDone) {
-      this->UpdateProgress(0.35f + 0.45f * static_cast<float>(roundsDone) / m_NumberOfImprovementRounds);
+      this->UpdateProgress(0.35f + 0.45f * static_cast<float>(roundsDone) / m_NumberOfHighQualityRounds);
     });
   const SurfaceNetsHighQualityResult result = mode.Run(triangles);
   m_NumberOfSwaps = result.numberOfSwaps;
@@ -704,9 +704,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "CellMargin: " << m_CellMargin << '\n';
   os << indent << "PreventSelfIntersections: " << m_PreventSelfIntersections << '\n';
   os << indent << "HighQuality: " << m_HighQuality << '\n';
-  os << indent << "NumberOfImprovementRounds: " << m_NumberOfImprovementRounds << '\n';
-  os << indent << "ImprovementIterations: " << m_ImprovementIterations << '\n';
-  os << indent << "ImprovementCellDilation: " << m_ImprovementCellDilation << '\n';
+  os << indent << "NumberOfHighQualityRounds: " << m_NumberOfHighQualityRounds << '\n';
+  os << indent << "HighQualityIterations: " << m_HighQualityIterations << '\n';
+  os << indent << "HighQualityCellDilation: " << m_HighQualityCellDilation << '\n';
   os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
   os << indent << "ConvergedSwapFraction: " << m_ConvergedSwapFraction << '\n';
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << '\n';
