@@ -224,9 +224,10 @@ CertifiedStarNodes(const SurfaceNet &          net,
   return starNode;
 }
 
-/** A face's bounding box rounded outward to float: it holds the face's double box, so
- * a pair it rejects is one the double boxes would have rejected, and a test reads two
- * boxes instead of six points. */
+/** A face's bounding box rounded outward to float. Most pairs tested are rejected by
+ * their boxes, which then takes two boxes instead of six points; the float box holds
+ * the face's double box, so a pair it rejects is one the double boxes would have
+ * rejected. */
 struct FaceBox
 {
   float lower[3];
