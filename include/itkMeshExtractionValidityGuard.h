@@ -75,8 +75,9 @@ struct ValidityThresholds
 {
   /** Two triangles sharing an edge fold when their normals make more than 120 degrees
    * (the cosine is below this): neither has turned over on its own, yet the surface
-   * doubles back. The high-quality mode's swaps (UndoIntersectingSwaps) and moves
-   * (PullBackInvalidMoves) may not make a new fold. */
+   * doubles back. A swap may not leave a fold at its triangles (UndoIntersectingSwaps);
+   * a move may not make a new fold, nor close further one that was there at its start
+   * (PullBackInvalidMoves). */
   static constexpr double FoldCosine = -0.5;
 
   /** The default DegenerateQAreaTolerance of the filters that move vertices or swap
@@ -119,13 +120,17 @@ struct ValidityThresholds
   static constexpr unsigned int MaximumShortenings = 5;
 
   /** PullBackInvalidMoves(): an invalid move is halved this often, then reset to the
-   * start. Once: the high-quality mode repeats its relaxation every round, so a node
-   * held back is tried again there. */
+   * start. Fewer than SurfaceNetsHalvingsBeforeReset: in the high-quality mode each
+   * relaxation starts from a relaxed, valid mesh on the iso-surface, so its moves are
+   * small and little is lost by resetting one, while every halving costs another round
+   * of checks over the whole mesh. */
   static constexpr unsigned int PullBackHalvingsBeforeReset = 1;
 
   /** RemoveSurfaceNetSelfIntersections(): the relocation of a node of crossing faces
-   * is halved this often, then reset to the node's cell centre. The relaxation runs
-   * once, so its moves are kept as far as they can be. */
+   * is halved this often, then reset to the node's cell centre. More than
+   * PullBackHalvingsBeforeReset: the SurfaceNets relaxation starts from the cell
+   * centres, away from the iso-surface, so a reset loses the node's whole way to the
+   * surface: halving keeps as much of it as the mesh allows. */
   static constexpr unsigned int SurfaceNetsHalvingsBeforeReset = 4;
 
   /** PullBackInvalidMoves() and RemoveSurfaceNetSelfIntersections(): after this many
