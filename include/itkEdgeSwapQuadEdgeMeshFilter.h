@@ -21,10 +21,13 @@
 #include "itkMeshExtractionEdgeSwapCriteria.h"
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionMacros.h"
+#include "itkMeshExtractionValidityGuard.h"
 #include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
 #include "itkQuadEdgeMeshToQuadEdgeMeshFilter.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace itk
@@ -70,10 +73,22 @@ namespace itk
  *
  * The checks above are local: on a rough surface a new triangle can still cut through
  * a nearby part of the surface. With PreventSelfIntersections (default on; beyond the
- * thesis) the new triangles are searched for crossings once the passes end (exact
- * test, MeshExtraction::FindSelfIntersections); the corners of those that cross are
- * locked and the passes run again from the input, up to 8 times, after which the
- * input is kept unswapped. The output then crosses itself nowhere the input did not.
+ * thesis) the validity guard (itkMeshExtractionValidityGuard.h) searches the new
+ * triangles for crossings once the passes end (exact test,
+ * MeshExtraction::FindCrossingNewTriangles); the corners of those that cross are
+ * locked and the passes run again from the input, up to
+ * MeshExtraction::ValidityThresholds::MaximumSwapAttempts times, after which the input
+ * is kept unswapped. The output then crosses itself nowhere the input did not.
+ *
+ * The high-quality SurfaceNets mode and the refinement of closed surfaces swap with
+ * another engine, MeshExtraction::SwapEdges on flat arrays, which takes the same
+ * decision; two engines remain because this filter must take any triangle
+ * QuadEdgeMesh, boundaries included, and hand on the mesh its Euler operator made (its
+ * faces' identifiers and order), while that engine needs a closed surface and lets a
+ * triangle take part in one swap per sweep, so that the guard can undo each swap on its
+ * own (see itkMeshExtractionClosedSurfaceEdgeSwap.h). Here a later swap of a pass may
+ * build on an earlier one, so a swap cannot be undone alone: the guard locks and
+ * retries instead.
  * Points keep their identifiers, positions and point data; faces are re-created by
  * the swaps, so face identifiers change and face (cell) data does not follow them.
  *
@@ -182,10 +197,42 @@ protected:
   SwapPass(OutputMeshType * mesh, const MeshExtraction::EdgeSwapParameters & parameters);
 
 private:
+  using PointPair = std::pair<OutputPointIdentifier, OutputPointIdentifier>;
+
+  /** The decision's parameters from the filter's settings. */
+  MeshExtraction::EdgeSwapParameters
+  MakeSwapParameters() const;
+  /** One attempt: the input copied to the output (`again`: after an earlier attempt),
+   * then passes until one swaps nothing or MaximumNumberOfIterations are made. */
+  void
+  SwapFromInput(bool again, const MeshExtraction::EdgeSwapParameters & parameters);
+  /** The corners of `triangles` of `mesh` (the output) join the crossing-locked points. */
+  void
+  LockCorners(const MeshExtraction::IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> & triangles);
+  /** The edges of `mesh` as (smaller, larger) point identifiers, sorted. */
+  static std::vector<PointPair>
+  SortedEdges(const OutputMeshType * mesh);
+  /** Each point's number of edges and whether it is on a boundary, by identifier. */
+  static void
+  CountValences(const OutputMeshType * mesh, std::vector<int> & valence, std::vector<std::uint8_t> & onBoundary);
+  bool
+  IsLocked(OutputPointIdentifier p) const;
+  /** The quad of the edge from corners[0] to corners[1], with corners[2] on its left
+   * and corners[3] on its right (MeshExtraction::EdgeSwapQuad). */
+  static MeshExtraction::EdgeSwapQuad
+  MakeQuad(OutputMeshType *                  mesh,
+           const OutputPointIdentifier       corners[4],
+           const std::vector<int> &          valence,
+           const std::vector<std::uint8_t> & onBoundary);
+  /** Swaps edge e of the quad `corners` with ITK's Euler operator; false if it refuses.
+   * Throws if it made another edge than (corners[2], corners[3]). */
+  bool
+  Flip(FlipEdgeFunctionType * flip, OutputMeshType * mesh, OutputQEType * e, const OutputPointIdentifier corners[4]);
+
   EdgeSwapCriterionEnum m_Criterion{ EdgeSwapCriterionEnum::Regularity };
   int                   m_MaximumNumberOfIterations{ 20 };
   double                m_FeatureAngle{ 60.0 };
-  double                m_DegenerateQAreaTolerance{ 1e-4 };
+  double                m_DegenerateQAreaTolerance{ MeshExtraction::ValidityThresholds::DegenerateQAreaTolerance };
   double                m_MinimumQAreaRatio{ 0.0 };
 
   bool m_PreventSelfIntersections{ true };

@@ -23,6 +23,7 @@
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionQuadEdgeMeshVertexSmoother.h"
+#include "itkMeshExtractionValidityGuard.h"
 
 #include <algorithm>
 #include <cmath>
@@ -60,19 +61,10 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::VerifyParameters() const
 
 template <typename TInputMesh, typename TOutputMesh>
 auto
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *                           mesh,
-                                                              const MeshExtraction::EdgeSwapParameters & parameters)
-  -> SizeValueType
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SortedEdges(const OutputMeshType * mesh) -> std::vector<PointPair>
 {
-  using MeshExtraction::ToVec3;
-  // The edges as (smaller, larger) point identifiers, in increasing order: the
-  // order does not depend on where the quad-edge structure keeps them.
-  std::vector<std::pair<OutputPointIdentifier, OutputPointIdentifier>> edges;
-  const auto *                                                         edgeCells = mesh->GetEdgeCells();
-  if (edgeCells == nullptr)
-  {
-    return 0;
-  }
+  std::vector<PointPair> edges;
+  const auto *           edgeCells = mesh->GetEdgeCells();
   edges.reserve(edgeCells->Size());
   for (auto it = edgeCells->Begin(); it != edgeCells->End(); ++it)
   {
@@ -87,27 +79,89 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
     edges.emplace_back(std::min(a, b), std::max(a, b));
   }
   std::sort(edges.begin(), edges.end());
+  return edges;
+}
 
-  auto IsLocked = [this](OutputPointIdentifier p) {
-    return std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), p) ||
-           std::binary_search(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end(), p);
-  };
-  // Valences and boundary flags once per pass (walking a point's edge ring through
-  // the quad-edge structure is slow), kept up to date as edges are swapped: a swap
-  // takes an edge from a and b and gives one to c and d; boundaries do not change.
-  auto *                points = mesh->GetPoints();
+template <typename TInputMesh, typename TOutputMesh>
+void
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::CountValences(const OutputMeshType *      mesh,
+                                                                   std::vector<int> &          valence,
+                                                                   std::vector<std::uint8_t> & onBoundary)
+{
+  const auto *          points = mesh->GetPoints();
   OutputPointIdentifier largestId = 0;
   for (auto it = points->Begin(); it != points->End(); ++it)
   {
     largestId = std::max(largestId, it.Index());
   }
-  std::vector<int>          valence(static_cast<std::size_t>(largestId) + 1, 0);
-  std::vector<std::uint8_t> onBoundary(static_cast<std::size_t>(largestId) + 1, 0);
+  valence.assign(static_cast<std::size_t>(largestId) + 1, 0);
+  onBoundary.assign(static_cast<std::size_t>(largestId) + 1, 0);
   for (auto it = points->Begin(); it != points->End(); ++it)
   {
     valence[it.Index()] = std::max(0, it.Value().GetValence());
     onBoundary[it.Index()] = it.Value().IsInternal() ? 0 : 1;
   }
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+bool
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::IsLocked(OutputPointIdentifier p) const
+{
+  return std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), p) ||
+         std::binary_search(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end(), p);
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+MeshExtraction::EdgeSwapQuad
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeQuad(OutputMeshType *                  mesh,
+                                                              const OutputPointIdentifier       corners[4],
+                                                              const std::vector<int> &          valence,
+                                                              const std::vector<std::uint8_t> & onBoundary)
+{
+  using MeshExtraction::ToVec3;
+  const OutputPointIdentifier  a = corners[0];
+  const OutputPointIdentifier  b = corners[1];
+  const OutputPointIdentifier  c = corners[2];
+  const OutputPointIdentifier  d = corners[3];
+  auto *                       points = mesh->GetPoints();
+  MeshExtraction::EdgeSwapQuad quad;
+  quad.a = ToVec3(points->ElementAt(a));
+  quad.b = ToVec3(points->ElementAt(b));
+  quad.c = ToVec3(points->ElementAt(c));
+  quad.d = ToVec3(points->ElementAt(d));
+  quad.valenceA = static_cast<unsigned int>(valence[a]);
+  quad.valenceB = static_cast<unsigned int>(valence[b]);
+  quad.valenceC = static_cast<unsigned int>(valence[c]);
+  quad.valenceD = static_cast<unsigned int>(valence[d]);
+  quad.boundaryA = onBoundary[a] != 0;
+  quad.boundaryB = onBoundary[b] != 0;
+  quad.boundaryC = onBoundary[c] != 0;
+  quad.boundaryD = onBoundary[d] != 0;
+  quad.sameApex = c == d;
+  quad.oppositeEdgeExists = !quad.sameApex && mesh->FindEdge(c, d) != nullptr;
+  return quad;
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+auto
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *                           mesh,
+                                                              const MeshExtraction::EdgeSwapParameters & parameters)
+  -> SizeValueType
+{
+  if (mesh->GetEdgeCells() == nullptr)
+  {
+    return 0;
+  }
+  // The edges as (smaller, larger) point identifiers, in increasing order: the
+  // order does not depend on where the quad-edge structure keeps them.
+  const std::vector<PointPair> edges = SortedEdges(mesh);
+  // Valences and boundary flags once per pass (walking a point's edge ring through
+  // the quad-edge structure is slow), kept up to date as edges are swapped: a swap
+  // takes an edge from a and b and gives one to c and d; boundaries do not change.
+  std::vector<int>          valence;
+  std::vector<std::uint8_t> onBoundary;
+  CountValences(mesh, valence, onBoundary);
+  const bool    anyLocked = !m_LockedPoints.empty() || !m_CrossingLockedPoints.empty();
   auto          flip = FlipEdgeFunctionType::New();
   SizeValueType swaps = 0;
   for (const auto & ab : edges)
@@ -117,69 +171,116 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
     {
       continue; // swapped away earlier in this pass, on a boundary, or not between two triangles
     }
-    const OutputPointIdentifier a = e->GetOrigin();
-    const OutputPointIdentifier b = e->GetDestination();
-    const OutputPointIdentifier c = e->GetLnext()->GetDestination();
-    const OutputPointIdentifier d = e->GetSym()->GetLnext()->GetDestination();
-    if ((!m_LockedPoints.empty() || !m_CrossingLockedPoints.empty()) &&
-        (IsLocked(a) || IsLocked(b) || IsLocked(c) || IsLocked(d)))
+    const OutputPointIdentifier q[4] = {
+      e->GetOrigin(), e->GetDestination(), e->GetLnext()->GetDestination(), e->GetSym()->GetLnext()->GetDestination()
+    };
+    if (anyLocked && (this->IsLocked(q[0]) || this->IsLocked(q[1]) || this->IsLocked(q[2]) || this->IsLocked(q[3])))
     {
       continue;
     }
-    const auto & pa = points->ElementAt(a);
-    const auto & pb = points->ElementAt(b);
-    const auto & pc = points->ElementAt(c);
-    const auto & pd = points->ElementAt(d);
-
-    MeshExtraction::EdgeSwapQuad quad;
-    quad.a = ToVec3(pa);
-    quad.b = ToVec3(pb);
-    quad.c = ToVec3(pc);
-    quad.d = ToVec3(pd);
-    quad.valenceA = static_cast<unsigned int>(valence[a]);
-    quad.valenceB = static_cast<unsigned int>(valence[b]);
-    quad.valenceC = static_cast<unsigned int>(valence[c]);
-    quad.valenceD = static_cast<unsigned int>(valence[d]);
-    quad.boundaryA = onBoundary[a] != 0;
-    quad.boundaryB = onBoundary[b] != 0;
-    quad.boundaryC = onBoundary[c] != 0;
-    quad.boundaryD = onBoundary[d] != 0;
-    quad.sameApex = c == d;
-    quad.oppositeEdgeExists = !quad.sameApex && mesh->FindEdge(c, d) != nullptr;
-
-    const MeshExtraction::EdgeSwapDecision decision = MeshExtraction::EvaluateEdgeSwap(quad, parameters);
+    const MeshExtraction::EdgeSwapDecision decision =
+      MeshExtraction::EvaluateEdgeSwap(MakeQuad(mesh, q, valence, onBoundary), parameters);
     if (decision.verdict == MeshExtraction::EdgeSwapVerdict::NoImprovement)
     {
       continue;
     }
-    if (!decision.Swap())
+    if (!decision.Swap() || !this->Flip(flip, mesh, e, q))
     {
       ++m_NumberOfRefusedSwaps;
       continue;
     }
-    flip->SetInput(mesh);
-    OutputQEType * result = flip->Evaluate(e);
-    if (result == nullptr)
-    {
-      // FlipEdge checks what CheckEdgeSwap checked and leaves the mesh unchanged
-      // when it refuses; count it as refused.
-      ++m_NumberOfRefusedSwaps;
-      continue;
-    }
-    const OutputPointIdentifier o = result->GetOrigin();
-    const OutputPointIdentifier t = result->GetDestination();
-    if (!((o == c && t == d) || (o == d && t == c)) || !result->IsInternal())
-    {
-      itkExceptionMacro(<< "QuadEdgeMeshEulerOperatorFlipEdgeFunction turned edge (" << a << ", " << b << ") into ("
-                        << o << ", " << t << ") instead of (" << c << ", " << d << ")");
-    }
-    --valence[a];
-    --valence[b];
-    ++valence[c];
-    ++valence[d];
+    --valence[q[0]];
+    --valence[q[1]];
+    ++valence[q[2]];
+    ++valence[q[3]];
     ++swaps;
   }
   return swaps;
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+bool
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::Flip(FlipEdgeFunctionType *      flip,
+                                                          OutputMeshType *            mesh,
+                                                          OutputQEType *              e,
+                                                          const OutputPointIdentifier corners[4])
+{
+  flip->SetInput(mesh);
+  OutputQEType * result = flip->Evaluate(e);
+  if (result == nullptr)
+  {
+    // FlipEdge checks what CheckEdgeSwap checked and leaves the mesh unchanged
+    // when it refuses; count it as refused.
+    return false;
+  }
+  const OutputPointIdentifier o = result->GetOrigin();
+  const OutputPointIdentifier t = result->GetDestination();
+  const OutputPointIdentifier c = corners[2];
+  const OutputPointIdentifier d = corners[3];
+  if (!((o == c && t == d) || (o == d && t == c)) || !result->IsInternal())
+  {
+    itkExceptionMacro(<< "QuadEdgeMeshEulerOperatorFlipEdgeFunction turned edge (" << corners[0] << ", " << corners[1]
+                      << ") into (" << o << ", " << t << ") instead of (" << c << ", " << d << ")");
+  }
+  return true;
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+MeshExtraction::EdgeSwapParameters
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeSwapParameters() const
+{
+  MeshExtraction::EdgeSwapParameters parameters;
+  parameters.criterion = m_Criterion;
+  parameters.minimumValence = 3;
+  parameters.featureAngle = m_FeatureAngle * itk::Math::pi / 180.0;
+  parameters.degenerateQAreaTolerance = m_DegenerateQAreaTolerance;
+  parameters.minimumQAreaRatio = m_MinimumQAreaRatio;
+  return parameters;
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+void
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapFromInput(
+  bool                                       again,
+  const MeshExtraction::EdgeSwapParameters & parameters)
+{
+  if (again)
+  {
+    this->GetOutput()->Initialize(); // the copy adds to what the output holds
+  }
+  this->CopyInputMeshToOutputMesh();
+  m_NumberOfSwaps = 0;
+  m_NumberOfRefusedSwaps = 0;
+  m_NumberOfIterations = 0;
+  ++m_NumberOfAttempts;
+  for (int pass = 0; pass < m_MaximumNumberOfIterations; ++pass)
+  {
+    const SizeValueType swaps = this->SwapPass(this->GetOutput(), parameters);
+    m_NumberOfSwaps += swaps;
+    ++m_NumberOfIterations;
+    this->UpdateProgress(static_cast<float>(pass + 1) / static_cast<float>(m_MaximumNumberOfIterations));
+    if (swaps == 0)
+    {
+      break;
+    }
+  }
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+void
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::LockCorners(const MeshExtraction::IndexedTriangleMesh & mesh,
+                                                                 const std::vector<std::uint32_t> &          triangles)
+{
+  for (const std::uint32_t f : triangles)
+  {
+    for (const std::uint32_t v : mesh.triangles[f])
+    {
+      m_CrossingLockedPoints.push_back(mesh.pointIds[v]);
+    }
+  }
+  std::sort(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end());
+  m_CrossingLockedPoints.erase(std::unique(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end()),
+                               m_CrossingLockedPoints.end());
 }
 
 template <typename TInputMesh, typename TOutputMesh>
@@ -209,116 +310,41 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   m_NumberOfAttempts = 0;
   m_KeptInput = false;
   m_CrossingLockedPoints.clear();
-  OutputMeshType * output = this->GetOutput();
-
-  MeshExtraction::EdgeSwapParameters parameters;
-  parameters.criterion = m_Criterion;
-  parameters.minimumValence = 3;
-  parameters.featureAngle = m_FeatureAngle * itk::Math::pi / 180.0;
-  parameters.degenerateQAreaTolerance = m_DegenerateQAreaTolerance;
-  parameters.minimumQAreaRatio = m_MinimumQAreaRatio;
-
-  // The input's edges, by point identifiers: a triangle with another edge is new.
-  using Edge = std::pair<OutputPointIdentifier, OutputPointIdentifier>;
-  std::vector<Edge> inputEdges;
+  const MeshExtraction::EdgeSwapParameters parameters = this->MakeSwapParameters();
+  // The input's edges: a triangle with another edge is new.
+  std::vector<MeshExtraction::PointIdentifierEdge> inputEdges;
   if (m_PreventSelfIntersections)
   {
-    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*input);
-    for (const auto & t : indexed.triangles)
-    {
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        const OutputPointIdentifier a = indexed.pointIds[t[k]];
-        const OutputPointIdentifier b = indexed.pointIds[t[(k + 1) % 3]];
-        inputEdges.emplace_back(std::min(a, b), std::max(a, b));
-      }
-    }
-    std::sort(inputEdges.begin(), inputEdges.end());
-    inputEdges.erase(std::unique(inputEdges.begin(), inputEdges.end()), inputEdges.end());
+    inputEdges = MeshExtraction::EdgesByPointIdentifier(MeshExtraction::MakeIndexedTriangleMesh(*input));
   }
-  constexpr unsigned int MaximumNumberOfAttempts = 8;
   this->UpdateProgress(0.0f);
-  for (unsigned int attempt = 0; attempt < MaximumNumberOfAttempts; ++attempt)
+  // Swap from the input; with PreventSelfIntersections, the validity guard's lock and
+  // retry: the corners of new triangles that cross another triangle are locked and the
+  // swaps made again from the input, until none crosses or the attempts run out.
+  constexpr unsigned int attempts = MeshExtraction::ValidityThresholds::MaximumSwapAttempts;
+  for (unsigned int attempt = 0; attempt < attempts; ++attempt)
   {
-    if (attempt > 0)
-    {
-      output->Initialize(); // the copy adds to what the output holds
-    }
-    this->CopyInputMeshToOutputMesh();
-    m_NumberOfSwaps = 0;
-    m_NumberOfRefusedSwaps = 0;
-    m_NumberOfIterations = 0;
-    ++m_NumberOfAttempts;
-    for (int pass = 0; pass < m_MaximumNumberOfIterations; ++pass)
-    {
-      const SizeValueType swaps = this->SwapPass(output, parameters);
-      m_NumberOfSwaps += swaps;
-      ++m_NumberOfIterations;
-      this->UpdateProgress(static_cast<float>(pass + 1) / static_cast<float>(m_MaximumNumberOfIterations));
-      if (swaps == 0)
-      {
-        break;
-      }
-    }
+    this->SwapFromInput(attempt > 0, parameters);
     if (!m_PreventSelfIntersections || m_NumberOfSwaps == 0)
     {
       break;
     }
-    // New triangles that cross another triangle: lock their corners and start again.
-    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*output);
-    std::vector<std::uint8_t>                 isNew(indexed.triangles.size(), 0);
-    std::vector<std::uint32_t>                queries;
-    for (std::uint32_t f = 0; f < indexed.triangles.size(); ++f)
-    {
-      const auto & t = indexed.triangles[f];
-      for (unsigned int k = 0; k < 3 && !isNew[f]; ++k)
-      {
-        const OutputPointIdentifier a = indexed.pointIds[t[k]];
-        const OutputPointIdentifier b = indexed.pointIds[t[(k + 1) % 3]];
-        isNew[f] =
-          std::binary_search(inputEdges.begin(), inputEdges.end(), Edge(std::min(a, b), std::max(a, b))) ? 0 : 1;
-      }
-      if (isNew[f])
-      {
-        queries.push_back(f);
-      }
-    }
-    std::vector<std::uint32_t> crossing;
-    for (const auto & pair : MeshExtraction::FindSelfIntersections(indexed, &queries))
-    {
-      for (const std::uint32_t f : { pair.first, pair.second })
-      {
-        if (isNew[f])
-        {
-          crossing.push_back(f);
-        }
-      }
-    }
-    std::sort(crossing.begin(), crossing.end());
-    crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*this->GetOutput());
+    const std::vector<std::uint32_t>          crossing = MeshExtraction::FindCrossingNewTriangles(indexed, inputEdges);
     m_NumberOfCrossingTriangles += crossing.size();
     if (crossing.empty())
     {
       break;
     }
-    if (attempt + 1 == MaximumNumberOfAttempts)
+    if (attempt + 1 == attempts)
     {
-      output->Initialize(); // still crossing: keep the input
+      this->GetOutput()->Initialize(); // still crossing: keep the input
       this->CopyInputMeshToOutputMesh();
       m_NumberOfSwaps = 0;
       m_KeptInput = true;
       break;
     }
-    for (const std::uint32_t f : crossing)
-    {
-      for (const std::uint32_t v : indexed.triangles[f])
-      {
-        m_CrossingLockedPoints.push_back(indexed.pointIds[v]);
-      }
-    }
-    std::sort(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end());
-    m_CrossingLockedPoints.erase(std::unique(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end()),
-                                 m_CrossingLockedPoints.end());
+    this->LockCorners(indexed, crossing);
   }
   this->UpdateProgress(1.0f);
 }

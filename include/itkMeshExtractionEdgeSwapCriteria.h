@@ -20,6 +20,7 @@
 
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionTriangleGeometry.h"
+#include "itkMeshExtractionValidityGuard.h"
 
 #include <cstdint>
 #include <iosfwd>
@@ -79,7 +80,7 @@ struct EdgeSwapParameters
    * swap creates one. */
   double featureAngle{ itk::Math::pi / 3.0 };
   /** A swap may not create a triangle with q_area at or below this. */
-  double degenerateQAreaTolerance{ 1e-4 };
+  double degenerateQAreaTolerance{ ValidityThresholds::DegenerateQAreaTolerance };
   /** The smaller q_area of the two new triangles must be at least this times the
    * smaller q_area of the two old ones (0: no quality requirement). */
   double minimumQAreaRatio{ 0.0 };

@@ -18,7 +18,9 @@
 #ifndef itkMeshExtractionQuadEdgeMeshVertexSmoother_h
 #define itkMeshExtractionQuadEdgeMeshVertexSmoother_h
 
+#include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionParallel.h"
+#include "itkMeshExtractionValidityGuard.h"
 #include "itkMeshExtractionVertexSmoothing.h"
 #include "itkQuadEdgeMeshParamMatrixCoefficients.h"
 
@@ -42,7 +44,8 @@ namespace MeshExtraction
  * on wire edges only and non-manifold points (several fans) never move.
  *
  * Step() moves every movable vertex once, in increasing point identifier order,
- * with the pure functions of itkMeshExtractionVertexSmoothing.h:
+ * with the pure functions of itkMeshExtractionVertexSmoothing.h and the guard of
+ * itkMeshExtractionValidityGuard.h:
  * - Batch: all displacements are computed from the positions at the start of the
  *   step (multithreaded, one result per vertex, so the outcome does not depend on
  *   the number of threads); then they are applied one by one, each through the
@@ -81,8 +84,8 @@ public:
     MeshExtractionEnums::SmoothingUpdate  update{ MeshExtractionEnums::SmoothingUpdate::Batch };
     VertexSmoothingParameters             move;
     bool                                  preventInversions{ true };
-    unsigned int                          maximumShortenings{ 5 };
-    double                                degenerateQAreaTolerance{ 1e-4 };
+    unsigned int                          maximumShortenings{ ValidityThresholds::MaximumShortenings };
+    double                                degenerateQAreaTolerance{ ValidityThresholds::DegenerateQAreaTolerance };
     /** If set, replaces `weights`: w_j = (*coefficients)(mesh, edge to v_j). */
     const CoefficientsType * coefficients{ nullptr };
     unsigned int             numberOfWorkUnits{ 0 };

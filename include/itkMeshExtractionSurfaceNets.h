@@ -211,55 +211,9 @@ MakeSurfaceNetFaces(const SurfaceNet &                               net,
   MakeSurfaceNetFaces(net, indexToPhysical, split, points.data(), polygons, polygonSize);
 }
 
-/** The self-intersecting face pairs of a SurfaceNet's triangles, found from the net's
- * structure instead of a tree over all faces: the two triangles of quad q are faces
- * 2q and 2q+1 of `mesh` (MakeSurfaceNetFaces with a triangulation), whose points are
- * the nodes in physical space. Every node lies in its own cell, so a quad lies in the
- * 2x2 block of cells around its voxel edge, at least the nodes' smallest distance to
- * their cell's faces (m) inside the block's outer faces; two quads whose blocks share no
- * cell are then at least 2m apart and cannot meet. Only pairs of faces whose quads
- * share a cell are tested (boxes, then FacesIntersect, as FindSelfIntersections),
- * each pair once, in parallel over cells. With `changed`, only pairs that include a
- * changed face are sought.
- *
- * Returns false, leaving `pairs` empty, when that argument does not hold for the
- * coordinates as computed: a node on its cell's face (m = 0) or m smaller than a
- * bound on the rounding of the physical coordinates (`roundedToFloat`: rounded to
- * float as written). Callers then use FindSelfIntersections. Otherwise `pairs` is
- * exactly FindSelfIntersections' result: pairs (i < j) of non-degenerate faces that
- * intersect away from their shared vertices and edge, sorted. */
-MeshExtraction_EXPORT bool
-FindSurfaceNetSelfIntersections(const SurfaceNet &                                     net,
-                                const IndexedTriangleMesh &                            mesh,
-                                const Vec3 &                                           origin,
-                                const Matrix<double, 3, 3> &                           indexToPhysical,
-                                bool                                                   roundedToFloat,
-                                const std::vector<std::uint32_t> *                     changed,
-                                std::vector<std::pair<std::uint32_t, std::uint32_t>> & pairs,
-                                unsigned int                                           numberOfWorkUnits = 0);
-
-/** Stage 3b of SurfaceNets: where relaxed faces cross each other (two sheets
- * pulled toward one iso-surface, e.g. where the object touches itself), move the
- * nodes of the crossing faces back toward `initial` (halving their relocation,
- * then resetting it) until no two faces intersect. The unrelaxed net (nodes at
- * cell centres and sheet centres) is free of intersections, so this ends with an
- * intersection-free net. Intersections are found with the exact test of
- * TriangleMeshQualityCalculator on the physical positions that will be written
- * (rounded to float with `roundToFloat`). Returns the number of nodes moved back.
- * With `faces`, the triangles of the final net as MakeSurfaceNetFaces makes them
- * (split by `split`, which must not be KeepQuads), so that they need not be made
- * again; left empty when no faces of the final positions were made. With `points`
- * too, those faces' physical points (as ToPhysical with `roundToFloat` makes them),
- * handed out with the faces and otherwise left empty. */
-MeshExtraction_EXPORT std::size_t
-                      RemoveSurfaceNetSelfIntersections(SurfaceNet &                                     net,
-                                                        const LargeBlockVector<Vec3> &                   initial,
-                                                        const Vec3 &                                     origin,
-                                                        const Matrix<double, 3, 3> &                     indexToPhysical,
-                                                        QuadSplit                                        split,
-                                                        bool                                             roundToFloat = false,
-                                                        LargeBlockVector<std::array<std::uint32_t, 4>> * faces = nullptr,
-                                                        std::vector<Vec3> *                              points = nullptr);
+// The self-intersection check after the relaxation (stage 3b),
+// FindSurfaceNetSelfIntersections and RemoveSurfaceNetSelfIntersections, is part of the
+// validity guard: itkMeshExtractionValidityGuard.h.
 
 } // namespace MeshExtraction
 } // namespace itk

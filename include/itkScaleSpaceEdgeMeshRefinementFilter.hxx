@@ -21,7 +21,7 @@
 #include "itkScaleSpaceEdgeMeshRefinementFilter.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionDistanceAnalysis.h"
-#include "itkMeshExtractionSurfaceNetsImprovement.h"
+#include "itkMeshExtractionClosedSurfaceEdgeSwap.h"
 #include "itkTriangleMeshQualityCalculator.h"
 #include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
 

@@ -65,7 +65,7 @@ struct SurfaceNetsClassificationStatistics;
  * 5. form faces in physical space (unless stage 4 made them of the final nodes) —
  *    FormFaces, MakeSurfaceNetFaces;
  * 6. the high-quality mode (HighQuality): rounds of edge swaps and relaxation on the
- *    triangles — RunHighQualityStage, ImproveTriangles;
+ *    triangles — RunHighQualityStage, RunHighQualityMode, MeshExtraction::SurfaceNetsHighQuality;
  * 7. the output mesh — MakeOutputMesh.
  *
  * Guarantees: the output is closed, 2-manifold and consistently oriented with
@@ -169,38 +169,76 @@ public:
    * after the SNERT relaxation, rounds of regularity edge swaps (the decision of
    * EdgeSwapQuadEdgeMeshFilter) followed by SNERT relaxation on the triangle mesh's
    * 1-rings, every node on the iso-surface and near its own cell (see
-   * ImprovementCellDilation). Swaps and moves that would flip, degenerate or cross a
-   * triangle are undone, so the output keeps every guarantee of plain SurfaceNets.
-   * Needs triangles. On strongly anisotropic voxels one node per cell cannot be
-   * spaced evenly in physical space: quality stays below that on cubic voxels unless
-   * the image is resampled first (ResampleToIsotropicVoxels). */
+   * HighQualityCellDilation); MeshExtraction::SurfaceNetsHighQuality. Swaps and moves
+   * that would flip, degenerate or cross a triangle, or collapse a component, are
+   * undone (the validity guard, itkMeshExtractionValidityGuard.h), so the output keeps
+   * every guarantee of plain SurfaceNets. Needs triangles. On strongly anisotropic
+   * voxels one node per cell cannot be spaced evenly in physical space: quality stays
+   * below that on cubic voxels unless the image is resampled first
+   * (ResampleToIsotropicVoxels). */
   itkSetMacro(HighQuality, bool);
   itkGetConstMacro(HighQuality, bool);
   itkBooleanMacro(HighQuality);
   /** Rounds of swaps and relaxation in high-quality mode (default 8); a round whose
-   * swaps are fewer than ConvergedSwapFraction of the triangles (after the first)
-   * ends them early. Then a Delaunay swap pass and a last relaxation, which also gets
-   * the iterations of the round that ended them early. */
-  itkSetMacro(NumberOfImprovementRounds, unsigned int);
-  itkGetConstMacro(NumberOfImprovementRounds, unsigned int);
+   * swaps are fewer than ConvergedSwapFraction of the triangles (after the first) ends
+   * them early. Then Delaunay swap sweeps and a last relaxation, which also gets the
+   * iterations of the round that ended them early. */
+  itkSetMacro(NumberOfHighQualityRounds, unsigned int);
+  itkGetConstMacro(NumberOfHighQualityRounds, unsigned int);
   /** The rounds of the high-quality mode have converged when a round's regularity swaps
    * are fewer than this fraction of the triangles (default 0.001; 0: only a round
    * without any swap ends them). The swaps fall off quickly from round to round, and
-   * once they are few the later rounds barely change the mesh's quality: stopping
-   * then saves their time. */
+   * once they are this few the mesh hardly changes any more: the remaining rounds would
+   * cost time and give nothing. */
   itkSetMacro(ConvergedSwapFraction, double);
   itkGetConstMacro(ConvergedSwapFraction, double);
   /** SNERT iterations per round in high-quality mode (default 4). */
-  itkSetMacro(ImprovementIterations, unsigned int);
-  itkGetConstMacro(ImprovementIterations, unsigned int);
+  itkSetMacro(HighQualityIterations, unsigned int);
+  itkGetConstMacro(HighQualityIterations, unsigned int);
   /** In high-quality mode a node may leave its cell by this much (voxels, default
    * 0.5, the most allowed): the swaps and the validity checks, not the cells, then keep
-   * the mesh valid. 0 keeps every node in its cell (plain SurfaceNets' constraint).
-   * A node that may leave its cell reaches the iso-surface near the cell's corners and
-   * spaces out better: the larger the dilation, the more regular the triangles and the
-   * fewer the slivers, with the vertices as close to the surface as before. */
-  itkSetMacro(ImprovementCellDilation, double);
-  itkGetConstMacro(ImprovementCellDilation, double);
+   * the mesh valid. 0 keeps every node in its cell (plain SurfaceNets' constraint). A
+   * node that may leave its cell reaches the iso-surface near the cell's corners and
+   * spaces out more evenly, so a larger dilation gives better angles, fewer slivers and
+   * a smaller largest vertex error, while the mean distance to the surface stays
+   * about the same. */
+  itkSetMacro(HighQualityCellDilation, double);
+  itkGetConstMacro(HighQualityCellDilation, double);
+#if !defined(ITK_LEGACY_REMOVE)
+  /** \deprecated The high-quality settings' earlier names: use
+   * Set/GetNumberOfHighQualityRounds, Set/GetHighQualityIterations and
+   * Set/GetHighQualityCellDilation. */
+  void
+  SetNumberOfImprovementRounds(unsigned int rounds)
+  {
+    this->SetNumberOfHighQualityRounds(rounds);
+  }
+  unsigned int
+  GetNumberOfImprovementRounds() const
+  {
+    return this->GetNumberOfHighQualityRounds();
+  }
+  void
+  SetImprovementIterations(unsigned int iterations)
+  {
+    this->SetHighQualityIterations(iterations);
+  }
+  unsigned int
+  GetImprovementIterations() const
+  {
+    return this->GetHighQualityIterations();
+  }
+  void
+  SetImprovementCellDilation(double dilation)
+  {
+    this->SetHighQualityCellDilation(dilation);
+  }
+  double
+  GetImprovementCellDilation() const
+  {
+    return this->GetHighQualityCellDilation();
+  }
+#endif
   /** Undo relaxation where faces would cross (default on): nodes of crossing
    * faces move back toward their cell centres until the mesh is free of
    * self-intersections (see GetNumberOfNodesMovedBack). */
@@ -239,7 +277,7 @@ public:
   itkGetConstMacro(NumberOfNodes, SizeValueType);
   itkGetConstMacro(NumberOfSplitCells, SizeValueType);
   itkGetConstMacro(NumberOfNodesMovedBack, SizeValueType);
-  /** After Update() in high-quality mode: swaps kept, and improvement rounds run
+  /** After Update() in high-quality mode: swaps kept, and high-quality rounds run
    * (those that swapped and relaxed; the last relaxation not counted). */
   itkGetConstMacro(NumberOfSwaps, SizeValueType);
   itkGetConstMacro(NumberOfRoundsPerformed, unsigned int);
@@ -273,10 +311,12 @@ protected:
   RelaxNet(RelaxationEnum                         relaxation,
            unsigned int                           iterations,
            MeshExtraction::SurfaceNetsCellCache * cellCache = nullptr);
-  /** Stage 5 (high-quality mode): swaps and relaxation on the triangles. */
+  /** Stage 6's rounds (MeshExtraction::SurfaceNetsHighQuality): swaps
+   * and relaxation (RelaxNet) on the triangles, every change checked by the validity
+   * guard. */
   void
-  ImproveTriangles(std::vector<MeshExtraction::TriangleIndices> & triangles,
-                   MeshExtraction::SurfaceNetsCellCache *         cellCache);
+  RunHighQualityMode(std::vector<MeshExtraction::TriangleIndices> & triangles,
+                     MeshExtraction::SurfaceNetsCellCache *         cellCache);
   /** Stage 7: the faces (node indices) with the nodes in physical space, into the
    * output mesh. `points`: the nodes' physical points if already made (the face
    * split made them), else null. */
@@ -405,10 +445,10 @@ private:
   double            m_CellMargin{ 0.01 };
   bool              m_PreventSelfIntersections{ true };
   bool              m_HighQuality{ false };
-  unsigned int      m_NumberOfImprovementRounds{ 8 };
+  unsigned int      m_NumberOfHighQualityRounds{ 8 };
   double            m_ConvergedSwapFraction{ 0.001 };
-  unsigned int      m_ImprovementIterations{ 4 };
-  double            m_ImprovementCellDilation{ 0.5 };
+  unsigned int      m_HighQualityIterations{ 4 };
+  double            m_HighQualityCellDilation{ 0.5 };
   bool              m_ResampleToIsotropicVoxels{ false };
 
   typename InputImageType::ConstPointer m_SampledInput;      // while GenerateData runs

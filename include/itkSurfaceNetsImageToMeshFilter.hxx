@@ -24,7 +24,7 @@
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
-#include "itkMeshExtractionSurfaceNetsImprovement.h"
+#include "itkMeshExtractionSurfaceNetsHighQuality.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMinimumMaximumImageCalculator.h"
@@ -72,9 +72,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
   {
     itkExceptionMacro("HighQuality swaps edges of triangles: it cannot keep Quadrilaterals.");
   }
-  if (!(m_ImprovementCellDilation >= 0.0 && m_ImprovementCellDilation <= 0.5))
+  if (!(m_HighQualityCellDilation >= 0.0 && m_HighQualityCellDilation <= 0.5))
   {
-    itkExceptionMacro("ImprovementCellDilation must be in [0, 0.5] voxels, got " << m_ImprovementCellDilation << '.');
+    itkExceptionMacro("HighQualityCellDilation must be in [0, 0.5] voxels, got " << m_HighQualityCellDilation << '.');
   }
   if (!(m_ConvergedSwapFraction >= 0.0 && m_ConvergedSwapFraction <= 1.0))
   {
@@ -263,7 +263,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
-SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTriangles(
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQualityMode(
   std::vector<MeshExtraction::TriangleIndices> & triangles,
   MeshExtraction::SurfaceNetsCellCache *         cellCache)
 {
@@ -271,103 +271,26 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ImproveTria
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
-  SurfaceNetTriangles mesh;
-  mesh.triangles = triangles;
-  mesh.BuildConnectivity(m_Net.positions.size());
-  EdgeSwapParameters swap;
-  swap.criterion = MeshExtractionEnums::EdgeSwapCriterion::Regularity;
-  swap.degenerateQAreaTolerance = 1e-3;
-  const RelaxationEnum relaxation = m_ClassifyByLabel ? RelaxationEnum::Averaging : RelaxationEnum::Combined;
-  const bool           roundToFloat = std::is_same<typename OutputMeshType::PointType::ValueType, float>::value;
-  // Swaps and the checks below keep the mesh valid, so a node may now leave its
-  // cell by a fraction of a voxel: it reaches the iso-surface near cell corners and
-  // spaces out better (nodes fixed in split cells stay fixed).
-  const double dilation = m_ImprovementCellDilation;
-  for (std::size_t i = 0; i < m_Net.positions.size(); ++i)
-  {
-    if (m_Net.boxLower[i] == m_Net.boxUpper[i])
-    {
-      continue;
-    }
-    const auto & cell = m_Net.cells[m_Net.nodeCell[i]];
-    m_Net.boxLower[i] = MakeVec3(cell.x - dilation, cell.y - dilation, cell.z - dilation);
-    m_Net.boxUpper[i] = MakeVec3(cell.x + 1 + dilation, cell.y + 1 + dilation, cell.z + 1 + dilation);
-  }
-  m_NumberOfSwaps = 0;
-  m_NumberOfRoundsPerformed = 0;
-  std::vector<std::uint64_t> refused; // edges whose swap had to be undone
-  TriangleAABBTree           tree;    // one shape for every check below, refitted
-  SelfIntersectionCache      cache;   // what the checks after small moves may skip
-  ComponentVolumes           volumes; // no component may turn inside out or flatten
-  volumes.Initialize(mesh.triangles, ToPhysical(m_Net.positions, first, M, roundToFloat));
-  // Relax, then undo moves that would break the mesh. A node pulled back is held
-  // still in later rounds: it is where the mesh is tight (thin or sharp parts).
-  auto relaxAndCheck = [&](unsigned int iterations) {
-    mesh.FillLinks(m_Net);
-    const LargeBlockVector<Vec3> start = m_Net.positions;
-    this->RelaxNet(relaxation, iterations, cellCache);
-    for (std::size_t i = 0; i < start.size(); ++i)
-    {
-      if (SquaredNorm(m_Net.positions[i] - start[i]) < 1e-10)
-      {
-        m_Net.positions[i] = start[i]; // settled: leave it, and its faces, unchanged
-      }
-    }
-    const LargeBlockVector<Vec3> before = m_Net.positions;
-    m_NumberOfNodesMovedBack +=
-      PullBackInvalidMoves(m_Net.positions, start, mesh, first, M, 1e-3, roundToFloat, &tree, &cache, &volumes);
-    for (std::size_t i = 0; i < start.size(); ++i)
-    {
-      if (m_Net.positions[i] != before[i])
-      {
-        m_Net.boxLower[i] = m_Net.positions[i];
-        m_Net.boxUpper[i] = m_Net.positions[i];
-      }
-    }
-  };
-  unsigned int finalIterations = m_ImprovementIterations;
-  for (unsigned int round = 0; round < m_NumberOfImprovementRounds; ++round)
-  {
-    const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
-    auto                    swaps = SwapEdges(physical, mesh, swap, &refused);
-    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree, &volumes);
-    m_NumberOfSwaps += swaps.size();
-    const bool converged = swaps.empty() || static_cast<double>(swaps.size()) <
-                                              m_ConvergedSwapFraction * static_cast<double>(mesh.triangles.size());
-    if (converged && round > 0)
-    {
-      // Few or no swaps: the rounds have converged, and this round's iterations go
-      // to the last relaxation, after the Delaunay pass (which saves a check, and
-      // gives the same mesh where nothing was swapped and the check moves nothing
-      // back).
-      finalIterations += m_ImprovementIterations;
-      break;
-    }
-    relaxAndCheck(m_ImprovementIterations);
-    ++m_NumberOfRoundsPerformed;
-    this->UpdateProgress(0.35f + 0.45f * static_cast<float>(round + 1) / m_NumberOfImprovementRounds);
-    if (swaps.empty())
-    {
-      break; // the first round found nothing to swap: it relaxed once, as before
-    }
-  }
-  // A last Delaunay pass: slivers that the constraint pinned get the diagonal that
-  // maximises their smallest angle.
-  EdgeSwapParameters delaunay = swap;
-  delaunay.criterion = MeshExtractionEnums::EdgeSwapCriterion::Delaunay;
-  for (unsigned int sweep = 0; sweep < 2; ++sweep)
-  {
-    const std::vector<Vec3> physical = ToPhysical(m_Net.positions, first, M, roundToFloat);
-    auto                    swaps = SwapEdges(physical, mesh, delaunay, &refused);
-    UndoIntersectingSwaps(physical, mesh, swaps, &refused, &tree, &volumes);
-    m_NumberOfSwaps += swaps.size();
-    if (swaps.empty())
-    {
-      break;
-    }
-  }
-  relaxAndCheck(finalIterations);
-  triangles = mesh.triangles;
+  SurfaceNetsHighQualityParameters parameters;
+  parameters.numberOfRounds = m_NumberOfHighQualityRounds;
+  parameters.iterations = m_HighQualityIterations;
+  parameters.cellDilation = m_HighQualityCellDilation;
+  parameters.convergedSwapFraction = m_ConvergedSwapFraction;
+  parameters.roundToFloat = std::is_same<typename OutputMeshType::PointType::ValueType, float>::value;
+  const RelaxationEnum   relaxation = m_ClassifyByLabel ? RelaxationEnum::Averaging : RelaxationEnum::Combined;
+  SurfaceNetsHighQuality mode(
+    m_Net,
+    first,
+    M,
+    parameters,
+    [this, relaxation, cellCache](unsigned int iterations) { this->RelaxNet(relaxation, iterations, cellCache); },
+    [this](unsigned int roundsDone) {
+      this->UpdateProgress(0.35f + 0.45f * static_cast<float>(roundsDone) / m_NumberOfHighQualityRounds);
+    });
+  const SurfaceNetsHighQualityResult result = mode.Run(triangles);
+  m_NumberOfSwaps = result.numberOfSwaps;
+  m_NumberOfRoundsPerformed = result.numberOfRounds;
+  m_NumberOfNodesMovedBack += result.numberOfNodesMovedBack;
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -809,7 +732,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
   {
     triangles[f] = { faces.polygons[f][0], faces.polygons[f][1], faces.polygons[f][2] };
   }
-  this->ImproveTriangles(triangles, &cellCache);
+  this->RunHighQualityMode(triangles, &cellCache);
   for (std::size_t f = 0; f < faces.polygons.size(); ++f)
   {
     faces.polygons[f] = { triangles[f][0], triangles[f][1], triangles[f][2], 0 };
@@ -846,9 +769,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "CellMargin: " << m_CellMargin << '\n';
   os << indent << "PreventSelfIntersections: " << m_PreventSelfIntersections << '\n';
   os << indent << "HighQuality: " << m_HighQuality << '\n';
-  os << indent << "NumberOfImprovementRounds: " << m_NumberOfImprovementRounds << '\n';
-  os << indent << "ImprovementIterations: " << m_ImprovementIterations << '\n';
-  os << indent << "ImprovementCellDilation: " << m_ImprovementCellDilation << '\n';
+  os << indent << "NumberOfHighQualityRounds: " << m_NumberOfHighQualityRounds << '\n';
+  os << indent << "HighQualityIterations: " << m_HighQualityIterations << '\n';
+  os << indent << "HighQualityCellDilation: " << m_HighQualityCellDilation << '\n';
   os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
   os << indent << "ConvergedSwapFraction: " << m_ConvergedSwapFraction << '\n';
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << '\n';

@@ -19,7 +19,7 @@
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionPredicates.h"
 #include "itkMeshExtractionQualityAnalysis.h"
-#include "itkMeshExtractionSurfaceNetsImprovement.h"
+#include "itkMeshExtractionClosedSurfaceEdgeSwap.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMeshExtractionTestHelpers.h"
 
