@@ -208,32 +208,32 @@ public:
   /** \deprecated The high-quality settings' earlier names: use
    * Set/GetNumberOfHighQualityRounds, Set/GetHighQualityIterations and
    * Set/GetHighQualityCellDilation. */
-  void
+  [[deprecated("use SetNumberOfHighQualityRounds")]] void
   SetNumberOfImprovementRounds(unsigned int rounds)
   {
     this->SetNumberOfHighQualityRounds(rounds);
   }
-  unsigned int
+  [[deprecated("use GetNumberOfHighQualityRounds")]] unsigned int
   GetNumberOfImprovementRounds() const
   {
     return this->GetNumberOfHighQualityRounds();
   }
-  void
+  [[deprecated("use SetHighQualityIterations")]] void
   SetImprovementIterations(unsigned int iterations)
   {
     this->SetHighQualityIterations(iterations);
   }
-  unsigned int
+  [[deprecated("use GetHighQualityIterations")]] unsigned int
   GetImprovementIterations() const
   {
     return this->GetHighQualityIterations();
   }
-  void
+  [[deprecated("use SetHighQualityCellDilation")]] void
   SetImprovementCellDilation(double dilation)
   {
     this->SetHighQualityCellDilation(dilation);
   }
-  double
+  [[deprecated("use GetHighQualityCellDilation")]] double
   GetImprovementCellDilation() const
   {
     return this->GetHighQualityCellDilation();

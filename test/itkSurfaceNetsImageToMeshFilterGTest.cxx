@@ -1456,7 +1456,7 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityBeatsSnertOnCreasesAndHandlesKeepi
 
 TEST(SurfaceNetsImageToMeshFilter, HighQualityLetsNodesLeaveTheirCellsByHalfAVoxelForFewerSlivers)
 {
-  // The default ImprovementCellDilation (0.5 voxel) against 0.25 and 0 on the narrow
+  // The default HighQualityCellDilation (0.5 voxel) against 0.25 and 0 on the narrow
   // cleft, where the surfaces of the cleft's two sides pin nodes near their cells'
   // faces. Measured: mean q_angle 0.6596, 0.6289 and lower; triangles below q_angle 0.3
   // none, 0.0125 %; mean vertex distance to the exact surface 0.0103, 0.0105 mm.
@@ -1466,11 +1466,11 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityLetsNodesLeaveTheirCellsByHalfAVox
       filter->SetHighQuality(true);
       if (dilation >= 0.0)
       {
-        filter->SetImprovementCellDilation(dilation);
+        filter->SetHighQualityCellDilation(dilation);
       }
     });
   };
-  EXPECT_EQ(itk::SurfaceNetsImageToMeshFilter<FloatImage>::New()->GetImprovementCellDilation(), 0.5);
+  EXPECT_EQ(itk::SurfaceNetsImageToMeshFilter<FloatImage>::New()->GetHighQualityCellDilation(), 0.5);
   const auto byDefault = run(-1.0);
   const auto q = Measure(byDefault.GetPointer());
   const auto quarter = Measure(run(0.25).GetPointer());

@@ -74,9 +74,9 @@ ExtractDefaults()
   s.gradient = filter->GetGradientMethod();
   s.sigma = filter->GetGradientSigma();
   s.highQuality = filter->GetHighQuality();
-  s.rounds = filter->GetNumberOfImprovementRounds();
+  s.rounds = filter->GetNumberOfHighQualityRounds();
   s.convergedSwaps = filter->GetConvergedSwapFraction();
-  s.cellDilation = filter->GetImprovementCellDilation();
+  s.cellDilation = filter->GetHighQualityCellDilation();
   s.isotropic = filter->GetResampleToIsotropicVoxels();
   return s;
 }
@@ -136,9 +136,9 @@ ConfigureFilter(TFilter * filter, const ExtractSettings & s)
   filter->SetGradientMethod(s.gradient);
   filter->SetGradientSigma(s.sigma);
   filter->SetHighQuality(s.highQuality);
-  filter->SetNumberOfImprovementRounds(s.rounds);
+  filter->SetNumberOfHighQualityRounds(s.rounds);
   filter->SetConvergedSwapFraction(s.convergedSwaps);
-  filter->SetImprovementCellDilation(s.cellDilation);
+  filter->SetHighQualityCellDilation(s.cellDilation);
   filter->SetResampleToIsotropicVoxels(s.isotropic);
   if (s.threads > 0)
   {
