@@ -379,98 +379,107 @@ IntersectingQueryPairs(const IndexedTriangleMesh &        mesh,
   return SortedPairs(found);
 }
 
-/** The full search of FindSelfIntersections (every pair that `accept` lets through
- * and that intersects; `tree` holds boxes that contain the faces' own, `boxes`;
- * certified[v] as CertifiedFans), with a cache: see SelfIntersectionCache.
- * acceptApart(f, g) is `accept` for two faces without a common vertex. */
-template <typename TAccept, typename TAcceptApart>
-std::vector<FacePair>
-SearchWithCache(const IndexedTriangleMesh &       mesh,
-                const TriangleAABBTree &          tree,
-                const AxisAlignedBoxArray &       boxes,
-                const std::vector<std::uint8_t> & certified,
-                SelfIntersectionCache &           cache,
-                TAccept &&                        accept,
-                TAcceptApart &&                   acceptApart)
+/** The faces of `mesh` that moved since the cache's last rebuild (moved[f] = 1): that
+ * changed vertices, or have a vertex 0.45 margin or more from where it was (NaN
+ * points count as moved). Returns their number; when the cache does not hold this
+ * mesh (another size, or a new margin), every face counts as moved and `moved` is
+ * left empty. */
+std::size_t
+FindMovedFaces(const IndexedTriangleMesh & mesh, const SelfIntersectionCache & cache, std::vector<std::uint8_t> & moved)
 {
   const std::size_t n = mesh.triangles.size();
   const std::size_t numberOfPoints = mesh.points.size();
-  // The faces that moved since the rebuild (NaN points count as moved).
-  std::vector<std::uint8_t> moved;
-  std::size_t               numberOfMoved = n;
-  if (n > 0 && cache.points.size() == numberOfPoints && cache.triangles.size() == n &&
-      cache.margin == cache.marginOfNearPairs)
+  if (!(n > 0 && cache.points.size() == numberOfPoints && cache.triangles.size() == n &&
+        cache.margin == cache.marginOfNearPairs))
   {
-    const double              limit = 0.45 * cache.margin;
-    std::vector<std::uint8_t> far(numberOfPoints);
-    for (std::size_t v = 0; v < numberOfPoints; ++v)
-    {
-      far[v] = SquaredNorm(mesh.points[v] - cache.points[v]) < limit * limit ? 0 : 1;
-    }
-    moved.resize(n);
-    for (std::size_t f = 0; f < n; ++f)
-    {
-      const auto & t = mesh.triangles[f];
-      moved[f] = (t != cache.triangles[f] || far[t[0]] || far[t[1]] || far[t[2]]) ? 1 : 0;
-    }
-    numberOfMoved = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), std::uint8_t{ 1 }));
+    return n;
   }
-  if (4 * numberOfMoved > n)
+  const double              limit = 0.45 * cache.margin;
+  std::vector<std::uint8_t> far(numberOfPoints);
+  for (std::size_t v = 0; v < numberOfPoints; ++v)
   {
-    // Rebuild: the whole search, which also yields the near pairs (the tree's boxes
-    // contain the grown ones).
-    ++cache.numberOfRebuilds;
-    cache.marginOfNearPairs = cache.margin;
-    cache.points.assign(mesh.points.begin(), mesh.points.end());
-    cache.triangles.assign(mesh.triangles.begin(), mesh.triangles.end());
-    const double grow = cache.margin; // both boxes grown by half of it
-    auto         near = [&](std::uint32_t f, std::uint32_t g) {
-      const AxisAlignedBox & a = boxes[f];
-      const AxisAlignedBox & b = boxes[g];
-      for (unsigned int d = 0; d < 3; ++d)
+    far[v] = SquaredNorm(mesh.points[v] - cache.points[v]) < limit * limit ? 0 : 1;
+  }
+  moved.resize(n);
+  for (std::size_t f = 0; f < n; ++f)
+  {
+    const auto & t = mesh.triangles[f];
+    moved[f] = (t != cache.triangles[f] || far[t[0]] || far[t[1]] || far[t[2]]) ? 1 : 0;
+  }
+  return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), std::uint8_t{ 1 }));
+}
+
+/** The rebuild of SearchWithCache: the whole search (the tree against itself), which
+ * also keeps the near pairs in the cache (the tree's boxes contain the grown ones)
+ * and the mesh as it is now. */
+template <typename TAcceptApart>
+std::vector<FacePair>
+RebuildSearch(const IndexedTriangleMesh &       mesh,
+              const TriangleAABBTree &          tree,
+              const AxisAlignedBoxArray &       boxes,
+              const std::vector<std::uint8_t> & certified,
+              SelfIntersectionCache &           cache,
+              TAcceptApart &&                   acceptApart)
+{
+  const std::size_t n = mesh.triangles.size();
+  ++cache.numberOfRebuilds;
+  cache.marginOfNearPairs = cache.margin;
+  cache.points.assign(mesh.points.begin(), mesh.points.end());
+  cache.triangles.assign(mesh.triangles.begin(), mesh.triangles.end());
+  const double grow = cache.margin; // both boxes grown by half of it
+  auto         near = [&](std::uint32_t f, std::uint32_t g) {
+    const AxisAlignedBox & a = boxes[f];
+    const AxisAlignedBox & b = boxes[g];
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      if (a.lower[d] - grow > b.upper[d] || b.lower[d] - grow > a.upper[d])
       {
-        if (a.lower[d] - grow > b.upper[d] || b.lower[d] - grow > a.upper[d])
+        return false;
+      }
+    }
+    return true;
+  };
+  // `accept`, with the common vertices looked up once for both questions.
+  return IntersectingOverlappingPairs(
+    mesh,
+    tree,
+    [&](std::uint32_t f, std::uint32_t g, std::vector<FacePair> & nearPairs) {
+      if (f >= n || g >= n)
+      {
+        return false;
+      }
+      const auto & t = mesh.triangles[f];
+      const auto & u = mesh.triangles[g];
+      bool         common = false;
+      for (std::uint32_t v : t)
+      {
+        if (v == u[0] || v == u[1] || v == u[2])
         {
-          return false;
+          if (certified[v])
+          {
+            return false;
+          }
+          common = true;
         }
       }
-      return true;
-    };
-    // `accept`, with the common vertices looked up once for both questions.
-    return IntersectingOverlappingPairs(
-      mesh,
-      tree,
-      [&](std::uint32_t f, std::uint32_t g, std::vector<FacePair> & nearPairs) {
-        if (f >= n || g >= n)
-        {
-          return false;
-        }
-        const auto & t = mesh.triangles[f];
-        const auto & u = mesh.triangles[g];
-        bool         common = false;
-        for (std::uint32_t v : t)
-        {
-          if (v == u[0] || v == u[1] || v == u[2])
-          {
-            if (certified[v])
-            {
-              return false;
-            }
-            common = true;
-          }
-        }
-        if (!common && near(f, g))
-        {
-          nearPairs.emplace_back(f, g);
-        }
-        return acceptApart(f, g);
-      },
-      cache.nearPairs);
-  }
-  ++cache.numberOfIncrementalSearches;
-  auto intersect = [&](std::uint32_t f, std::uint32_t g) { return accept(f, g) && MeshFacesIntersect(mesh, f, g); };
-  // Near pairs of faces that did not move: the cache's blocks of them on the work
-  // units (the pairs are sorted below, so the blocks' order does not matter).
+      if (!common && near(f, g))
+      {
+        nearPairs.emplace_back(f, g);
+      }
+      return acceptApart(f, g);
+    },
+    cache.nearPairs);
+}
+
+/** The near pairs of the cache whose faces both did not move and that intersect, in
+ * the order of the cache's blocks (one block per work unit at a time). */
+template <typename TAcceptApart>
+std::vector<FacePair>
+IntersectingNearPairs(const IndexedTriangleMesh &       mesh,
+                      const SelfIntersectionCache &     cache,
+                      const std::vector<std::uint8_t> & moved,
+                      TAcceptApart &&                   acceptApart)
+{
   FacePairBlocks nearFound(cache.nearPairs.size());
   ParallelForBlocks(cache.nearPairs.size(), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t b = begin; b < end; ++b)
@@ -490,9 +499,22 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
   {
     found.insert(found.end(), block.begin(), block.end());
   }
-  // Faces that did not move and meet at a vertex whose fan is not certified now.
+  return found;
+}
+
+/** Appends to `found` the pairs of faces that did not move, meet at a vertex whose fan
+ * is not certified now, and intersect(f, g). */
+template <typename TIntersect>
+void
+AppendIntersectingCornerPairs(const IndexedTriangleMesh &       mesh,
+                              const std::vector<std::uint8_t> & moved,
+                              const std::vector<std::uint8_t> & certified,
+                              TIntersect &&                     intersect,
+                              std::vector<FacePair> &           found)
+{
+  const std::size_t     numberOfPoints = mesh.points.size();
   std::vector<FacePair> corners; // (vertex, face)
-  for (std::uint32_t f = 0; f < n; ++f)
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
   {
     for (std::uint32_t v : mesh.triangles[f])
     {
@@ -524,17 +546,27 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
     }
     i = j;
   }
-  // Pairs with a face that moved: one query each (a pair of two such faces once).
+}
+
+/** The intersecting pairs with a face that moved: one tree query each (a pair of two
+ * such faces once), sorted. */
+template <typename TAccept>
+std::vector<FacePair>
+IntersectingMovedPairs(const IndexedTriangleMesh &       mesh,
+                       const TriangleAABBTree &          tree,
+                       const AxisAlignedBoxArray &       boxes,
+                       const std::vector<std::uint8_t> & moved,
+                       TAccept &&                        accept)
+{
   std::vector<std::uint32_t> queries;
-  for (std::uint32_t f = 0; f < n; ++f)
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
   {
     if (moved[f])
     {
       queries.push_back(f);
     }
   }
-  FacePairBlocks blocks(2);
-  blocks[0] = IntersectingQueryPairs(
+  return IntersectingQueryPairs(
     mesh,
     tree,
     queries,
@@ -542,11 +574,42 @@ SearchWithCache(const IndexedTriangleMesh &       mesh,
     [&boxes](std::uint32_t f) { return boxes[f]; },
     [&moved](std::uint32_t g) { return moved[g] != 0; },
     accept);
+}
+
+/** The full search of FindSelfIntersections (every pair that `accept` lets through
+ * and that intersects; `tree` holds boxes that contain the faces' own, `boxes`;
+ * certified[v] as CertifiedFans), with a cache: see SelfIntersectionCache. Either a
+ * rebuild, or the pairs that may have changed since the last one: near pairs of
+ * faces that did not move, faces that meet at a vertex not certified now, and
+ * pairs with a face that moved. acceptApart(f, g) is `accept` for two faces without
+ * a common vertex. */
+template <typename TAccept, typename TAcceptApart>
+std::vector<FacePair>
+SearchWithCache(const IndexedTriangleMesh &       mesh,
+                const TriangleAABBTree &          tree,
+                const AxisAlignedBoxArray &       boxes,
+                const std::vector<std::uint8_t> & certified,
+                SelfIntersectionCache &           cache,
+                TAccept &&                        accept,
+                TAcceptApart &&                   acceptApart)
+{
+  std::vector<std::uint8_t> moved;
+  if (4 * FindMovedFaces(mesh, cache, moved) > mesh.triangles.size())
+  {
+    return RebuildSearch(mesh, tree, boxes, certified, cache, acceptApart);
+  }
+  ++cache.numberOfIncrementalSearches;
+  auto intersect = [&](std::uint32_t f, std::uint32_t g) { return accept(f, g) && MeshFacesIntersect(mesh, f, g); };
+  std::vector<FacePair> found = IntersectingNearPairs(mesh, cache, moved, acceptApart);
+  AppendIntersectingCornerPairs(mesh, moved, certified, intersect, found);
+  FacePairBlocks blocks(2);
+  blocks[0] = IntersectingMovedPairs(mesh, tree, boxes, moved, accept);
   blocks[1] = std::move(found);
   auto pairs = SortedPairs(blocks);
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
 }
+
 /** Per point: 1 if its fan is certified (CertifyFan), from the faces at it in face
  * order. All 0 if a face refers to a point that is not there. */
 std::vector<std::uint8_t>
@@ -629,21 +692,18 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
     // All pairs: the tree against itself, each pair of overlapping boxes once.
     return IntersectingOverlappingPairs(mesh, tree, [](std::uint32_t, std::uint32_t) { return true; });
   }
+  // The proper faces asked about, each once, sorted: one tree query each.
   std::vector<std::uint32_t> asked;
-  if (queries != nullptr)
+  for (std::uint32_t f : *queries)
   {
-    for (std::uint32_t f : *queries)
+    if (f < n && isValid[f])
     {
-      if (f < n && isValid[f])
-      {
-        asked.push_back(f);
-      }
+      asked.push_back(f);
     }
-    std::sort(asked.begin(), asked.end());
-    asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
   }
-  const std::vector<std::uint32_t> & probes = queries != nullptr ? asked : valid;
-  std::vector<bool>                  probed(queries != nullptr ? n : 0, false);
+  std::sort(asked.begin(), asked.end());
+  asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
+  std::vector<bool> probed(n, false);
   for (std::uint32_t f : asked)
   {
     probed[f] = true;
@@ -651,32 +711,29 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   return IntersectingQueryPairs(
     mesh,
     tree,
-    probes,
+    asked,
     2048,
     [&mesh](std::uint32_t f) { return TriangleBox(mesh, f); },
-    [&](std::uint32_t g) { return queries == nullptr || probed[g]; },
+    [&probed](std::uint32_t g) { return probed[g]; },
     [](std::uint32_t, std::uint32_t) { return true; });
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>>
-FindSelfIntersections(const IndexedTriangleMesh &        mesh,
-                      const std::vector<std::uint32_t> & queries,
-                      const TriangleAABBTree &           tree,
-                      SelfIntersectionCache *            cache)
+namespace
 {
-  const std::size_t          n = mesh.triangles.size();
-  auto                       valid = [&mesh](std::uint32_t f) { return MeshFaceIsProper(mesh, f); };
-  std::vector<std::uint32_t> probes;
-  std::vector<bool>          probed(n, false);
-  // Which queries are proper faces (an exact test each) on the work units; then the
-  // probes, each once, in the queries' order.
+/** The queries that are proper faces (an exact test each, on the work units), each
+ * once, sorted; probed[f] is set for each. */
+std::vector<std::uint32_t>
+ProperProbes(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> & queries, std::vector<bool> & probed)
+{
+  const std::size_t         n = mesh.triangles.size();
   std::vector<std::uint8_t> proper(queries.size());
   ParallelForBlocks(queries.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      proper[i] = queries[i] < n && valid(queries[i]) ? 1 : 0;
+      proper[i] = queries[i] < n && MeshFaceIsProper(mesh, queries[i]) ? 1 : 0;
     }
   });
+  std::vector<std::uint32_t> probes;
   for (std::size_t i = 0; i < queries.size(); ++i)
   {
     const std::uint32_t f = queries[i];
@@ -687,48 +744,72 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
     }
   }
   std::sort(probes.begin(), probes.end());
-  if (4 * probes.size() > n)
+  return probes;
+}
+
+/** The search for many probes (a sweep of swaps or moves over the whole mesh): the
+ * tree against itself visits each overlapping pair once, cheaper than one query per
+ * probe; with a cache, only what may have changed since its rebuild
+ * (SearchWithCache). The faces' own boxes (the tree's may be larger) and validity
+ * are computed once per face instead of once per pair. */
+std::vector<FacePair>
+SweepSearch(const IndexedTriangleMesh & mesh,
+            const TriangleAABBTree &    tree,
+            const std::vector<bool> &   probed,
+            SelfIntersectionCache *     cache)
+{
+  const std::size_t         n = mesh.triangles.size();
+  AxisAlignedBoxArray       boxes(n);
+  std::vector<std::uint8_t> usable(n);
+  ParallelForBlocks(n, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      boxes[f] = TriangleBox(mesh, static_cast<std::uint32_t>(f));
+      usable[f] = probed[f] || MeshFaceIsProper(mesh, static_cast<std::uint32_t>(f));
+    }
+  });
+  // Vertices whose fan is certified (CertifyFan): two faces that meet at one have no
+  // other common point, or only their common edge, so they need no test. Nearly all
+  // the pairs the tree yields are faces with a common vertex, and nearly every
+  // vertex of a valid mesh is certified.
+  const std::vector<std::uint8_t> certified = CertifiedFans(mesh);
+  auto                            meetAtCertifiedVertex = [&](std::uint32_t f, std::uint32_t g) {
+    const auto & t = mesh.triangles[f];
+    const auto & u = mesh.triangles[g];
+    for (unsigned int i = 0; i < 3; ++i)
+    {
+      if ((t[i] == u[0] || t[i] == u[1] || t[i] == u[2]) && certified[t[i]])
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  auto acceptApart = [&](std::uint32_t f, std::uint32_t g) {
+    return boxes[f].Overlaps(boxes[g]) && (probed[f] || probed[g]) && usable[f] && usable[g];
+  };
+  auto accept = [&](std::uint32_t f, std::uint32_t g) {
+    // The common-vertex test first: it turns away nearly every pair.
+    return f < n && g < n && !meetAtCertifiedVertex(f, g) && acceptApart(f, g);
+  };
+  return cache != nullptr ? SearchWithCache(mesh, tree, boxes, certified, *cache, accept, acceptApart)
+                          : IntersectingOverlappingPairs(mesh, tree, accept);
+}
+} // namespace
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>>
+FindSelfIntersections(const IndexedTriangleMesh &        mesh,
+                      const std::vector<std::uint32_t> & queries,
+                      const TriangleAABBTree &           tree,
+                      SelfIntersectionCache *            cache)
+{
+  std::vector<bool>                probed(mesh.triangles.size(), false);
+  const std::vector<std::uint32_t> probes = ProperProbes(mesh, queries, probed);
+  if (4 * probes.size() > mesh.triangles.size())
   {
-    // Many probes (a sweep of swaps or moves over the whole mesh): the tree against
-    // itself visits each overlapping pair once, cheaper than one query per probe.
-    // The faces' own boxes (the tree's may be larger) and validity, once per face
-    // instead of once per pair.
-    AxisAlignedBoxArray       boxes(n);
-    std::vector<std::uint8_t> usable(n);
-    ParallelForBlocks(n, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t f = begin; f < end; ++f)
-      {
-        boxes[f] = TriangleBox(mesh, static_cast<std::uint32_t>(f));
-        usable[f] = probed[f] || valid(static_cast<std::uint32_t>(f));
-      }
-    });
-    // Vertices whose fan is certified (CertifyFan): two faces that meet at one have no
-    // other common point, or only their common edge, so they need no test. Nearly all
-    // the pairs the tree yields are faces with a common vertex (99.7 % on a relaxed
-    // sphere), and nearly every vertex of a valid mesh is certified.
-    const std::vector<std::uint8_t> certified = CertifiedFans(mesh);
-    auto                            meetAtCertifiedVertex = [&](std::uint32_t f, std::uint32_t g) {
-      const auto & t = mesh.triangles[f];
-      const auto & u = mesh.triangles[g];
-      for (unsigned int i = 0; i < 3; ++i)
-      {
-        if ((t[i] == u[0] || t[i] == u[1] || t[i] == u[2]) && certified[t[i]])
-        {
-          return true;
-        }
-      }
-      return false;
-    };
-    auto acceptApart = [&](std::uint32_t f, std::uint32_t g) {
-      return boxes[f].Overlaps(boxes[g]) && (probed[f] || probed[g]) && usable[f] && usable[g];
-    };
-    auto accept = [&](std::uint32_t f, std::uint32_t g) {
-      // The common-vertex test first: it turns away nearly every pair.
-      return f < n && g < n && !meetAtCertifiedVertex(f, g) && acceptApart(f, g);
-    };
-    return cache != nullptr ? SearchWithCache(mesh, tree, boxes, certified, *cache, accept, acceptApart)
-                            : IntersectingOverlappingPairs(mesh, tree, accept);
+    return SweepSearch(mesh, tree, probed, cache);
   }
+  // Few probes: one tree query each.
   return IntersectingQueryPairs(
     mesh,
     tree,
@@ -736,8 +817,277 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
     2048,
     [&mesh](std::uint32_t f) { return TriangleBox(mesh, f); },
     [&probed](std::uint32_t g) { return probed[g]; },
-    [&](std::uint32_t f, std::uint32_t g) { return TriangleBox(mesh, g).Overlaps(TriangleBox(mesh, f)) && valid(g); });
+    [&](std::uint32_t f, std::uint32_t g) {
+      return TriangleBox(mesh, g).Overlaps(TriangleBox(mesh, f)) && MeshFaceIsProper(mesh, g);
+    });
 }
+
+namespace
+{
+/** Throws unless `reference` has the points and triangles of `mesh` by index. */
+void
+CheckSameConnectivity(const IndexedTriangleMesh & mesh, const IndexedTriangleMesh & reference)
+{
+  if (reference.points.size() != mesh.points.size() || reference.triangles != mesh.triangles)
+  {
+    itkGenericExceptionMacro("TriangleMeshQualityCalculator: the reference mesh must have the same connectivity as "
+                             "the mesh (it has "
+                             << reference.points.size() << " points and " << reference.triangles.size()
+                             << " triangles, the mesh " << mesh.points.size() << " and " << mesh.triangles.size()
+                             << ", or the triangles differ).");
+  }
+}
+
+/** MeasureTriangle for every triangle, on the work units. */
+void
+MeasureAllTriangles(const IndexedTriangleMesh & mesh, std::vector<TriangleMeasures> & m)
+{
+  m.resize(mesh.triangles.size());
+  ParallelForBlocks(mesh.triangles.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      const auto & t = mesh.triangles[f];
+      m[f] = MeasureTriangle(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+    }
+  });
+}
+
+/** The shape statistics of the triangles (the q's and the angles, with their
+ * histograms), the share of q_angle < 0.3, the degenerate triangles and the area. */
+void
+SummariseTriangleShapes(const std::vector<TriangleMeasures> & m,
+                        double                                degenerateQAreaTolerance,
+                        TriangleMeshQualityReport &           r)
+{
+  const std::size_t   numberOfTriangles = m.size();
+  std::vector<double> qLength(numberOfTriangles);
+  std::vector<double> qAngle(numberOfTriangles);
+  std::vector<double> qArea(numberOfTriangles);
+  std::vector<double> minAngle(numberOfTriangles);
+  std::vector<double> maxAngle(numberOfTriangles);
+  std::size_t         below03 = 0;
+  for (std::size_t f = 0; f < numberOfTriangles; ++f)
+  {
+    qLength[f] = m[f].qLength;
+    qAngle[f] = m[f].qAngle;
+    qArea[f] = m[f].qArea;
+    minAngle[f] = m[f].minAngle * RadiansToDegrees;
+    maxAngle[f] = m[f].maxAngle * RadiansToDegrees;
+    below03 += m[f].qAngle < 0.3 ? 1 : 0;
+    r.degenerateTriangles += m[f].qArea <= degenerateQAreaTolerance ? 1 : 0;
+    r.totalArea += m[f].area;
+  }
+  r.fractionQAngleBelow03 = numberOfTriangles ? static_cast<double>(below03) / numberOfTriangles : 0.0;
+  r.qLength = ComputeValueStatistics(std::move(qLength));
+  r.qAngle = ComputeValueStatistics(std::move(qAngle));
+  r.qArea = ComputeValueStatistics(std::move(qArea));
+  r.minimumAngle = ComputeValueStatistics(std::move(minAngle), 0.0, 60.0, 12);
+  r.maximumAngle = ComputeValueStatistics(std::move(maxAngle), 60.0, 180.0, 12);
+}
+
+/** The statistics of the edge lengths, histogram on [0, longest edge]. */
+ValueStatistics
+EdgeLengthStatistics(const IndexedTriangleMesh & mesh, const MeshTopology & topo)
+{
+  std::vector<double> lengths(topo.edges.size());
+  double              longest = 0.0;
+  for (std::size_t e = 0; e < topo.edges.size(); ++e)
+  {
+    lengths[e] = Norm(mesh.points[topo.edges[e].a] - mesh.points[topo.edges[e].b]);
+    longest = std::max(longest, lengths[e]);
+  }
+  return ComputeValueStatistics(std::move(lengths), 0.0, longest > 0.0 ? longest : 1.0, 10);
+}
+
+/** Smoothness |2 pi - sum of incident angles| of the interior vertices (thesis
+ * section 3.3): their mean and number, and each vertex's value if asked for. */
+void
+SummariseSmoothness(const IndexedTriangleMesh &           mesh,
+                    const MeshTopology &                  topo,
+                    const std::vector<TriangleMeasures> & m,
+                    TriangleMeshQualityReport &           r,
+                    std::vector<double> *                 vertexSmoothness)
+{
+  std::vector<double> angleSum(mesh.points.size(), 0.0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      angleSum[mesh.triangles[f][k]] += m[f].angle[k];
+    }
+  }
+  if (vertexSmoothness)
+  {
+    vertexSmoothness->assign(mesh.points.size(), 0.0);
+  }
+  double sum = 0.0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+  {
+    if (topo.vertexIsInterior[v])
+    {
+      const double s = std::abs(2.0 * itk::Math::pi - angleSum[v]);
+      sum += s;
+      ++r.numberOfInteriorVertices;
+      if (vertexSmoothness)
+      {
+        (*vertexSmoothness)[v] = s;
+      }
+    }
+  }
+  r.meanSmoothness = r.numberOfInteriorVertices ? sum / r.numberOfInteriorVertices : 0.0;
+}
+
+/** The valence histogram of the referenced vertices and their share of valence 6. */
+void
+SummariseValences(const MeshTopology & topo, std::size_t numberOfPoints, TriangleMeshQualityReport & r)
+{
+  std::size_t valence6 = 0;
+  for (std::size_t v = 0; v < numberOfPoints; ++v)
+  {
+    const std::size_t d = topo.vertexEdgeOffsets[v + 1] - topo.vertexEdgeOffsets[v];
+    if (d == 0 && topo.vertexTriangleOffsets[v + 1] == topo.vertexTriangleOffsets[v])
+    {
+      continue;
+    }
+    if (r.valenceHistogram.size() <= d)
+    {
+      r.valenceHistogram.resize(d + 1, 0);
+    }
+    ++r.valenceHistogram[d];
+    valence6 += d == 6 ? 1 : 0;
+  }
+  r.fractionValence6 =
+    topo.numberOfReferencedVertices ? static_cast<double>(valence6) / topo.numberOfReferencedVertices : 0.0;
+}
+
+/** Sum over the components of (2 - chi - b) / 2, chi the component's Euler
+ * characteristic and b its boundary loops (for a manifold, oriented mesh). */
+std::int64_t
+Genus(const MeshTopology & topo, std::size_t numberOfPoints, std::size_t numberOfTriangles)
+{
+  std::vector<std::int64_t> chi(topo.numberOfComponents, 0);
+  for (std::size_t v = 0; v < numberOfPoints; ++v)
+  {
+    if (topo.vertexTriangleOffsets[v + 1] > topo.vertexTriangleOffsets[v])
+    {
+      ++chi[topo.triangleComponent[topo.vertexTriangles[topo.vertexTriangleOffsets[v]]]];
+    }
+  }
+  for (const auto & e : topo.edges)
+  {
+    --chi[topo.triangleComponent[topo.incidences[e.firstIncidence].triangle]];
+  }
+  for (std::size_t f = 0; f < numberOfTriangles; ++f)
+  {
+    ++chi[topo.triangleComponent[f]];
+  }
+  std::int64_t genus = 0;
+  for (std::size_t c = 0; c < topo.numberOfComponents; ++c)
+  {
+    genus += (2 - chi[c] - static_cast<std::int64_t>(topo.componentBoundaryLoops[c])) / 2;
+  }
+  return genus;
+}
+
+/** Integrity from the topology: non-manifold, boundary and inconsistent edges,
+ * non-manifold vertices, boundary loops, components, Euler characteristic and (for
+ * a manifold, consistently oriented mesh) the genus. */
+void
+SummariseTopology(const MeshTopology &        topo,
+                  std::size_t                 numberOfPoints,
+                  std::size_t                 numberOfTriangles,
+                  TriangleMeshQualityReport & r)
+{
+  r.nonManifoldEdges = static_cast<std::int64_t>(topo.numberOfNonManifoldEdges);
+  r.nonManifoldVertices = static_cast<std::int64_t>(topo.numberOfNonManifoldVertices);
+  r.boundaryEdges = static_cast<std::int64_t>(topo.numberOfBoundaryEdges);
+  r.boundaryLoops = static_cast<std::int64_t>(topo.numberOfBoundaryLoops);
+  r.inconsistentlyOrientedEdges = static_cast<std::int64_t>(topo.numberOfInconsistentEdges);
+  r.connectedComponents = static_cast<std::int64_t>(topo.numberOfComponents);
+  r.eulerCharacteristic = static_cast<std::int64_t>(topo.numberOfReferencedVertices) -
+                          static_cast<std::int64_t>(topo.edges.size()) + static_cast<std::int64_t>(numberOfTriangles);
+  if (r.IsManifold() && r.IsConsistentlyOriented() && numberOfTriangles > 0)
+  {
+    r.genus = Genus(topo, numberOfPoints, numberOfTriangles);
+  }
+}
+
+/** Signed volume by the divergence theorem, summed over the triangles in order. */
+double
+EnclosedVolume(const IndexedTriangleMesh & mesh)
+{
+  double volume = 0.0;
+  for (const auto & t : mesh.triangles)
+  {
+    volume += Dot(mesh.points[t[0]], Cross(mesh.points[t[1]], mesh.points[t[2]])) / 6.0;
+  }
+  return volume;
+}
+
+/** Non-degenerate triangles whose normal turned by 90 degrees or more against
+ * `reference` (same connectivity). */
+std::int64_t
+CountInvertedVersusReference(const IndexedTriangleMesh &           mesh,
+                             const IndexedTriangleMesh &           reference,
+                             const std::vector<TriangleMeasures> & m,
+                             double                                degenerateQAreaTolerance)
+{
+  std::int64_t inverted = 0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    const auto & t = mesh.triangles[f];
+    if (m[f].qArea <= degenerateQAreaTolerance)
+    {
+      continue;
+    }
+    const Vec3 n = TriangleNormal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+    const Vec3 nr = TriangleNormal(reference.points[t[0]], reference.points[t[1]], reference.points[t[2]]);
+    inverted += Dot(n, nr) <= 0.0 ? 1 : 0;
+  }
+  return inverted;
+}
+
+/** Non-degenerate triangles of a closed mesh that face into the enclosed volume, and
+ * those whose side the rays could not tell (ClassifyTriangleOrientation). */
+void
+CountInvertedVersusOutward(const IndexedTriangleMesh &           mesh,
+                           const std::vector<TriangleMeasures> & m,
+                           double                                degenerateQAreaTolerance,
+                           TriangleMeshQualityReport &           r)
+{
+  const std::vector<int> side = ClassifyTriangleOrientation(mesh, degenerateQAreaTolerance);
+  r.invertedTrianglesVersusOutward = 0;
+  r.undeterminedOrientationTriangles = 0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    if (m[f].qArea <= degenerateQAreaTolerance)
+    {
+      continue;
+    }
+    r.invertedTrianglesVersusOutward += side[f] < 0 ? 1 : 0;
+    r.undeterminedOrientationTriangles += side[f] == 0 ? 1 : 0;
+  }
+}
+
+/** The self-intersecting pairs (FindSelfIntersections), the triangles in them, and
+ * the first few pairs for inspection. */
+void
+SummariseSelfIntersections(const IndexedTriangleMesh & mesh,
+                           std::size_t                 maximumReportedIntersections,
+                           TriangleMeshQualityReport & r)
+{
+  const auto        pairs = FindSelfIntersections(mesh);
+  std::vector<bool> involved(mesh.triangles.size(), false);
+  for (const auto & p : pairs)
+  {
+    involved[p.first] = true;
+    involved[p.second] = true;
+  }
+  r.selfIntersectingPairs = static_cast<std::int64_t>(pairs.size());
+  r.selfIntersectingTriangles = std::count(involved.begin(), involved.end(), true);
+  r.intersectingPairs.assign(pairs.begin(), pairs.begin() + std::min(pairs.size(), maximumReportedIntersections));
+}
+} // namespace
 
 TriangleMeshQualityReport
 AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
@@ -751,204 +1101,42 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
   r.numberOfPoints = mesh.points.size();
   r.numberOfTriangles = numberOfTriangles;
   r.numberOfSplitQuads = mesh.numberOfSplitQuads;
-
   if (reference != nullptr)
   {
-    if (reference->points.size() != mesh.points.size() || reference->triangles != mesh.triangles)
-    {
-      itkGenericExceptionMacro("TriangleMeshQualityCalculator: the reference mesh must have the same connectivity as "
-                               "the mesh (it has "
-                               << reference->points.size() << " points and " << reference->triangles.size()
-                               << " triangles, the mesh " << mesh.points.size() << " and " << numberOfTriangles
-                               << ", or the triangles differ).");
-    }
+    CheckSameConnectivity(mesh, *reference);
   }
+  const double tolerance = options.degenerateQAreaTolerance;
 
-  // Per-triangle measures.
+  // Per-triangle measures, then their statistics and histograms.
   std::vector<TriangleMeasures>   localMeasures;
   std::vector<TriangleMeasures> & m = measuresOut ? *measuresOut : localMeasures;
-  m.resize(numberOfTriangles);
-  ParallelForBlocks(numberOfTriangles, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t f = begin; f < end; ++f)
-    {
-      const auto & t = mesh.triangles[f];
-      m[f] = MeasureTriangle(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
-    }
-  });
-
+  MeasureAllTriangles(mesh, m);
   const MeshTopology topo = BuildMeshTopology(mesh);
   r.numberOfEdges = topo.edges.size();
   r.numberOfReferencedPoints = topo.numberOfReferencedVertices;
   r.unreferencedPoints = static_cast<std::int64_t>(mesh.points.size() - topo.numberOfReferencedVertices);
+  SummariseTriangleShapes(m, tolerance, r);
+  r.edgeLength = EdgeLengthStatistics(mesh, topo);
 
-  {
-    std::vector<double> qLength(numberOfTriangles);
-    std::vector<double> qAngle(numberOfTriangles);
-    std::vector<double> qArea(numberOfTriangles);
-    std::vector<double> minAngle(numberOfTriangles);
-    std::vector<double> maxAngle(numberOfTriangles);
-    std::size_t         below03 = 0;
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      qLength[f] = m[f].qLength;
-      qAngle[f] = m[f].qAngle;
-      qArea[f] = m[f].qArea;
-      minAngle[f] = m[f].minAngle * RadiansToDegrees;
-      maxAngle[f] = m[f].maxAngle * RadiansToDegrees;
-      below03 += m[f].qAngle < 0.3 ? 1 : 0;
-      r.degenerateTriangles += m[f].qArea <= options.degenerateQAreaTolerance ? 1 : 0;
-      r.totalArea += m[f].area;
-    }
-    r.fractionQAngleBelow03 = numberOfTriangles ? static_cast<double>(below03) / numberOfTriangles : 0.0;
-    r.qLength = ComputeValueStatistics(std::move(qLength));
-    r.qAngle = ComputeValueStatistics(std::move(qAngle));
-    r.qArea = ComputeValueStatistics(std::move(qArea));
-    r.minimumAngle = ComputeValueStatistics(std::move(minAngle), 0.0, 60.0, 12);
-    r.maximumAngle = ComputeValueStatistics(std::move(maxAngle), 60.0, 180.0, 12);
-  }
-  {
-    std::vector<double> lengths(topo.edges.size());
-    double              longest = 0.0;
-    for (std::size_t e = 0; e < topo.edges.size(); ++e)
-    {
-      lengths[e] = Norm(mesh.points[topo.edges[e].a] - mesh.points[topo.edges[e].b]);
-      longest = std::max(longest, lengths[e]);
-    }
-    r.edgeLength = ComputeValueStatistics(std::move(lengths), 0.0, longest > 0.0 ? longest : 1.0, 10);
-  }
+  // Vertices.
+  SummariseSmoothness(mesh, topo, m, r, vertexSmoothness);
+  SummariseValences(topo, mesh.points.size(), r);
 
-  // Vertices: smoothness |2 pi - sum of incident angles| and valence.
-  {
-    std::vector<double> angleSum(mesh.points.size(), 0.0);
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        angleSum[mesh.triangles[f][k]] += m[f].angle[k];
-      }
-    }
-    if (vertexSmoothness)
-    {
-      vertexSmoothness->assign(mesh.points.size(), 0.0);
-    }
-    double sum = 0.0;
-    for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    {
-      if (topo.vertexIsInterior[v])
-      {
-        const double s = std::abs(2.0 * itk::Math::pi - angleSum[v]);
-        sum += s;
-        ++r.numberOfInteriorVertices;
-        if (vertexSmoothness)
-        {
-          (*vertexSmoothness)[v] = s;
-        }
-      }
-    }
-    r.meanSmoothness = r.numberOfInteriorVertices ? sum / r.numberOfInteriorVertices : 0.0;
-    std::size_t valence6 = 0;
-    for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    {
-      const std::size_t d = topo.vertexEdgeOffsets[v + 1] - topo.vertexEdgeOffsets[v];
-      if (d == 0 && topo.vertexTriangleOffsets[v + 1] == topo.vertexTriangleOffsets[v])
-      {
-        continue;
-      }
-      if (r.valenceHistogram.size() <= d)
-      {
-        r.valenceHistogram.resize(d + 1, 0);
-      }
-      ++r.valenceHistogram[d];
-      valence6 += d == 6 ? 1 : 0;
-    }
-    r.fractionValence6 =
-      topo.numberOfReferencedVertices ? static_cast<double>(valence6) / topo.numberOfReferencedVertices : 0.0;
-  }
-
-  // Topology.
-  r.nonManifoldEdges = static_cast<std::int64_t>(topo.numberOfNonManifoldEdges);
-  r.nonManifoldVertices = static_cast<std::int64_t>(topo.numberOfNonManifoldVertices);
-  r.boundaryEdges = static_cast<std::int64_t>(topo.numberOfBoundaryEdges);
-  r.boundaryLoops = static_cast<std::int64_t>(topo.numberOfBoundaryLoops);
-  r.inconsistentlyOrientedEdges = static_cast<std::int64_t>(topo.numberOfInconsistentEdges);
-  r.connectedComponents = static_cast<std::int64_t>(topo.numberOfComponents);
-  r.eulerCharacteristic = static_cast<std::int64_t>(topo.numberOfReferencedVertices) -
-                          static_cast<std::int64_t>(topo.edges.size()) + static_cast<std::int64_t>(numberOfTriangles);
-  if (r.IsManifold() && r.IsConsistentlyOriented() && numberOfTriangles > 0)
-  {
-    std::vector<std::int64_t> chi(topo.numberOfComponents, 0);
-    for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    {
-      if (topo.vertexTriangleOffsets[v + 1] > topo.vertexTriangleOffsets[v])
-      {
-        ++chi[topo.triangleComponent[topo.vertexTriangles[topo.vertexTriangleOffsets[v]]]];
-      }
-    }
-    for (const auto & e : topo.edges)
-    {
-      --chi[topo.triangleComponent[topo.incidences[e.firstIncidence].triangle]];
-    }
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      ++chi[topo.triangleComponent[f]];
-    }
-    r.genus = 0;
-    for (std::size_t c = 0; c < topo.numberOfComponents; ++c)
-    {
-      r.genus += (2 - chi[c] - static_cast<std::int64_t>(topo.componentBoundaryLoops[c])) / 2;
-    }
-  }
-
-  // Volume (divergence theorem).
-  for (const auto & t : mesh.triangles)
-  {
-    r.enclosedVolume += Dot(mesh.points[t[0]], Cross(mesh.points[t[1]], mesh.points[t[2]])) / 6.0;
-  }
-
-  // Inversions.
+  // Integrity: edges, components, Euler characteristic; volume; orientation;
+  // self-intersections.
+  SummariseTopology(topo, mesh.points.size(), numberOfTriangles, r);
+  r.enclosedVolume = EnclosedVolume(mesh);
   if (reference != nullptr)
   {
-    r.invertedTrianglesVersusReference = 0;
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      const auto & t = mesh.triangles[f];
-      if (m[f].qArea <= options.degenerateQAreaTolerance)
-      {
-        continue;
-      }
-      const Vec3 n = TriangleNormal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
-      const Vec3 nr = TriangleNormal(reference->points[t[0]], reference->points[t[1]], reference->points[t[2]]);
-      r.invertedTrianglesVersusReference += Dot(n, nr) <= 0.0 ? 1 : 0;
-    }
+    r.invertedTrianglesVersusReference = CountInvertedVersusReference(mesh, *reference, m, tolerance);
   }
   if (options.computeOutwardOrientation && r.IsClosed())
   {
-    const std::vector<int> side = ClassifyTriangleOrientation(mesh, options.degenerateQAreaTolerance);
-    r.invertedTrianglesVersusOutward = 0;
-    r.undeterminedOrientationTriangles = 0;
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      if (m[f].qArea <= options.degenerateQAreaTolerance)
-      {
-        continue;
-      }
-      r.invertedTrianglesVersusOutward += side[f] < 0 ? 1 : 0;
-      r.undeterminedOrientationTriangles += side[f] == 0 ? 1 : 0;
-    }
+    CountInvertedVersusOutward(mesh, m, tolerance, r);
   }
   if (options.computeSelfIntersections)
   {
-    const auto        pairs = FindSelfIntersections(mesh);
-    std::vector<bool> involved(numberOfTriangles, false);
-    for (const auto & p : pairs)
-    {
-      involved[p.first] = true;
-      involved[p.second] = true;
-    }
-    r.selfIntersectingPairs = static_cast<std::int64_t>(pairs.size());
-    r.selfIntersectingTriangles = std::count(involved.begin(), involved.end(), true);
-    r.intersectingPairs.assign(pairs.begin(),
-                               pairs.begin() + std::min(pairs.size(), options.maximumReportedIntersections));
+    SummariseSelfIntersections(mesh, options.maximumReportedIntersections, r);
   }
   return r;
 }
