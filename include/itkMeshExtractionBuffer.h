@@ -35,9 +35,9 @@ namespace MeshExtraction
  * are whole 2 MiB pages at a 2 MiB boundary inside one C-heap block (malloc of the
  * pages plus 2 MiB: not posix_memalign, whose split-off remainders fragment the
  * heap the rest of the program uses), advised on Linux as transparent huge pages,
- * so that the first touch costs one page fault per 2 MiB instead of one per 4 KiB.
- * On this project's test machines a 4 KiB fault has cost 1.5 to 11 us (as much
- * as computing 1 to 7 nodes' relaxation steps). Throws std::bad_alloc. */
+ * so that the first touch costs one page fault per 2 MiB instead of one per 4 KiB,
+ * which matters where a loop does little work per element it touches. Throws
+ * std::bad_alloc. */
 MeshExtraction_EXPORT void *
 AllocateLargeBlock(std::size_t bytes);
 

@@ -18,6 +18,7 @@
 #ifndef itkMeshExtractionGaussianScaleSpace_h
 #define itkMeshExtractionGaussianScaleSpace_h
 
+#include "MeshExtractionExport.h"
 #include "itkContinuousIndex.h"
 #include "itkImage.h"
 #include "itkImageRegionConstIteratorWithIndex.h"
@@ -53,30 +54,8 @@ namespace MeshExtraction
  * width 2 sigma must fit in the capture range [-maximumScale, maximumScale]).
  * Returns an empty list unless 0 < minimumScale, 0 < maximumScale, n >= 1 and both
  * are finite. */
-inline std::vector<double>
-ScaleSpaceScales(double maximumScale, double minimumScale, unsigned int scalesPerOctave)
-{
-  std::vector<double> scales;
-  if (!(maximumScale > 0.0) || !(minimumScale > 0.0) || !std::isfinite(maximumScale) || !std::isfinite(minimumScale) ||
-      scalesPerOctave == 0)
-  {
-    return scales;
-  }
-  if (maximumScale <= minimumScale * (1.0 + 1e-9))
-  {
-    scales.push_back(maximumScale);
-    return scales;
-  }
-  const double       octaves = std::log2(maximumScale / minimumScale);
-  const unsigned int steps = std::max(1u, static_cast<unsigned int>(std::ceil(scalesPerOctave * octaves - 1e-9)));
-  scales.reserve(steps + 1);
-  for (unsigned int i = 0; i <= steps; ++i)
-  {
-    scales.push_back(maximumScale * std::pow(minimumScale / maximumScale, static_cast<double>(i) / steps));
-  }
-  scales.back() = minimumScale;
-  return scales;
-}
+MeshExtraction_EXPORT std::vector<double>
+                      ScaleSpaceScales(double maximumScale, double minimumScale, unsigned int scalesPerOctave);
 
 /** Offsets of the five samples of a search window, in units of sigma, in the order
  * in which they win ties: the centre first, then the inner, then the outer pair. */
@@ -113,16 +92,8 @@ EdgeSearchStep(double centre, double sigma, double capture, TSample && sample)
 /** Sub-sample position of a maximum: the vertex of the parabola through
  * (-h, below), (0, centre), (h, above), as an offset from 0 clamped to [-h/2, h/2];
  * 0 if the three values are not concave. */
-inline double
-ParabolicPeakOffset(double below, double centre, double above, double h)
-{
-  const double curvature = below - 2.0 * centre + above;
-  if (!(curvature < 0.0))
-  {
-    return 0.0;
-  }
-  return std::clamp(0.5 * h * (below - above) / curvature, -0.5 * h, 0.5 * h);
-}
+MeshExtraction_EXPORT double
+ParabolicPeakOffset(double below, double centre, double above, double h);
 
 /** The whole coarse-to-fine search along one line: EdgeSearchStep at every scale,
  * starting at 0 (the vertex); `sample(k, t)` is the gradient magnitude at scale k and
@@ -372,6 +343,32 @@ private:
   Build(const ImageType * image, const std::vector<double> & scales, const RegionType & region, unsigned int workUnits)
   {
     const auto start = std::chrono::steady_clock::now();
+    this->SetGeometry(image, scales, region, workUnits);
+    const std::vector<float> input = RegionAsFloats(image, region, m_NumberOfVoxels);
+    m_Magnitudes.assign(scales.size(), std::vector<float>());
+    for (auto & d : m_TopDerivatives)
+    {
+      d.assign(m_NumberOfVoxels, 0.0f);
+    }
+    std::vector<float> a(m_NumberOfVoxels);
+    std::vector<float> b(m_NumberOfVoxels);
+    std::vector<float> c(m_NumberOfVoxels);
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      this->ComputeScale(k, input, a, b, c);
+    }
+    m_BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  /** What the scale space is built from (the image, its geometry, the scales and the
+   * region), and the map from physical points to continuous region indices: ITK's own
+   * transform, probed at the origin and along the three unit vectors. */
+  void
+  SetGeometry(const ImageType *           image,
+              const std::vector<double> & scales,
+              const RegionType &          region,
+              unsigned int                workUnits)
+  {
     m_Image = image;
     m_ImageMTime = image->GetMTime();
     m_ImageUpdateMTime = image->GetUpdateMTime();
@@ -388,9 +385,6 @@ private:
       m_Spacing[a] = image->GetSpacing()[a];
     }
     m_NumberOfVoxels = static_cast<std::size_t>(m_Size[0] * m_Size[1] * m_Size[2]);
-
-    // Physical point -> continuous index of the region: ITK's own transform, probed at
-    // the origin and along the three unit vectors.
     using CIndex = ContinuousIndex<double, 3>;
     PointType origin;
     origin.Fill(0.0);
@@ -409,62 +403,63 @@ private:
     {
       m_IndexOrigin[i] = c0[i] - static_cast<double>(region.GetIndex(i));
     }
+  }
 
-    // The region as floats.
-    std::vector<float> input(m_NumberOfVoxels);
+  /** The voxels of `region` as floats, x fastest. */
+  static std::vector<float>
+  RegionAsFloats(const ImageType * image, const RegionType & region, std::size_t numberOfVoxels)
+  {
+    std::vector<float>                           input(numberOfVoxels);
+    ImageRegionConstIteratorWithIndex<ImageType> it(image, region);
+    std::size_t                                  i = 0;
+    for (it.GoToBegin(); !it.IsAtEnd(); ++it, ++i)
     {
-      ImageRegionConstIteratorWithIndex<ImageType> it(image, region);
-      std::size_t                                  i = 0;
-      for (it.GoToBegin(); !it.IsAtEnd(); ++it, ++i)
-      {
-        input[i] = static_cast<float>(it.Get());
-      }
+      input[i] = static_cast<float>(it.Get());
     }
+    return input;
+  }
 
-    m_Magnitudes.assign(scales.size(), std::vector<float>());
-    for (auto & d : m_TopDerivatives)
+  /** The gradient magnitude at scale k (and at k = 0 the three derivatives and the
+   * largest magnitude): the separable Gaussian derivatives, a, b and c are work
+   * buffers. d/dx: Gz, Gy, Dx. d/dy: Gz, Gx, Dy. d/dz: Gy, Gx, Dz (8 passes). */
+  void
+  ComputeScale(std::size_t                k,
+               const std::vector<float> & input,
+               std::vector<float> &       a,
+               std::vector<float> &       b,
+               std::vector<float> &       c)
+  {
+    const double       sigma = m_Scales[k];
+    std::vector<float> g[3];
+    std::vector<float> d[3];
+    for (unsigned int axis = 0; axis < 3; ++axis)
     {
-      d.assign(m_NumberOfVoxels, 0.0f);
+      g[axis] = GaussianKernel(sigma, m_Spacing[axis], 0);
+      d[axis] = GaussianKernel(sigma, m_Spacing[axis], 1);
     }
-    std::vector<float> a(m_NumberOfVoxels);
-    std::vector<float> b(m_NumberOfVoxels);
-    std::vector<float> c(m_NumberOfVoxels);
-    for (std::size_t k = 0; k < scales.size(); ++k)
+    std::vector<float> & magnitude = m_Magnitudes[k];
+    magnitude.assign(m_NumberOfVoxels, 0.0f);
+    this->Convolve(input.data(), a.data(), 2, g[2]);
+    this->Convolve(a.data(), b.data(), 1, g[1]);
+    this->Convolve(b.data(), c.data(), 0, d[0]);
+    this->Accumulate(c, magnitude, k == 0 ? &m_TopDerivatives[0] : nullptr);
+    this->Convolve(a.data(), b.data(), 0, g[0]);
+    this->Convolve(b.data(), c.data(), 1, d[1]);
+    this->Accumulate(c, magnitude, k == 0 ? &m_TopDerivatives[1] : nullptr);
+    this->Convolve(input.data(), a.data(), 1, g[1]);
+    this->Convolve(a.data(), b.data(), 0, g[0]);
+    this->Convolve(b.data(), c.data(), 2, d[2]);
+    this->Accumulate(c, magnitude, k == 0 ? &m_TopDerivatives[2] : nullptr);
+    float maximum = 0.0f;
+    for (auto & v : magnitude)
     {
-      const double       sigma = scales[k];
-      std::vector<float> g[3];
-      std::vector<float> d[3];
-      for (unsigned int axis = 0; axis < 3; ++axis)
-      {
-        g[axis] = GaussianKernel(sigma, m_Spacing[axis], 0);
-        d[axis] = GaussianKernel(sigma, m_Spacing[axis], 1);
-      }
-      std::vector<float> & magnitude = m_Magnitudes[k];
-      magnitude.assign(m_NumberOfVoxels, 0.0f);
-      // d/dx: Gz, Gy, Dx.  d/dy: Gz, Gx, Dy.  d/dz: Gy, Gx, Dz (8 passes).
-      this->Convolve(input.data(), a.data(), 2, g[2]);
-      this->Convolve(a.data(), b.data(), 1, g[1]);
-      this->Convolve(b.data(), c.data(), 0, d[0]);
-      this->Accumulate(c, magnitude, k == 0 ? &m_TopDerivatives[0] : nullptr);
-      this->Convolve(a.data(), b.data(), 0, g[0]);
-      this->Convolve(b.data(), c.data(), 1, d[1]);
-      this->Accumulate(c, magnitude, k == 0 ? &m_TopDerivatives[1] : nullptr);
-      this->Convolve(input.data(), a.data(), 1, g[1]);
-      this->Convolve(a.data(), b.data(), 0, g[0]);
-      this->Convolve(b.data(), c.data(), 2, d[2]);
-      this->Accumulate(c, magnitude, k == 0 ? &m_TopDerivatives[2] : nullptr);
-      float maximum = 0.0f;
-      for (auto & v : magnitude)
-      {
-        v = std::sqrt(v);
-        maximum = std::max(maximum, v);
-      }
-      if (k == 0)
-      {
-        m_MaximumTopMagnitude = maximum;
-      }
+      v = std::sqrt(v);
+      maximum = std::max(maximum, v);
     }
-    m_BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (k == 0)
+    {
+      m_MaximumTopMagnitude = maximum;
+    }
   }
 
   static void
@@ -485,82 +480,112 @@ private:
   void
   Convolve(const float * in, float * out, unsigned int axis, const std::vector<float> & k) const
   {
-    const std::int64_t nx = m_Size[0];
-    const std::int64_t ny = m_Size[1];
-    const std::int64_t nz = m_Size[2];
-    const std::int64_t r = static_cast<std::int64_t>(k.size() / 2);
-    const auto         slice = static_cast<std::size_t>(nx * ny);
     ParallelForBlocks(
-      static_cast<std::size_t>(nz),
+      static_cast<std::size_t>(m_Size[2]),
       1,
       [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t zs = begin; zs < end; ++zs)
         {
-          const auto z = static_cast<std::int64_t>(zs);
-          float *    o = out + zs * slice;
           if (axis == 0)
           {
-            for (std::int64_t y = 0; y < ny; ++y)
-            {
-              const float * row = in + zs * slice + static_cast<std::size_t>(y * nx);
-              float *       orow = o + static_cast<std::size_t>(y * nx);
-              for (std::int64_t x = 0; x < nx; ++x)
-              {
-                float sum = 0.0f;
-                if (x >= r && x + r < nx)
-                {
-                  const float * p = row + (x - r);
-                  for (std::size_t j = 0; j < k.size(); ++j)
-                  {
-                    sum += k[j] * p[j];
-                  }
-                }
-                else
-                {
-                  for (std::int64_t j = -r; j <= r; ++j)
-                  {
-                    sum += k[static_cast<std::size_t>(j + r)] * row[std::clamp<std::int64_t>(x + j, 0, nx - 1)];
-                  }
-                }
-                orow[x] = sum;
-              }
-            }
+            this->ConvolveSliceAlongX(in, out, zs, k);
           }
           else if (axis == 1)
           {
-            for (std::int64_t y = 0; y < ny; ++y)
-            {
-              float * orow = o + static_cast<std::size_t>(y * nx);
-              std::fill(orow, orow + nx, 0.0f);
-              for (std::int64_t j = -r; j <= r; ++j)
-              {
-                const std::int64_t yy = std::clamp<std::int64_t>(y + j, 0, ny - 1);
-                const float *      row = in + zs * slice + static_cast<std::size_t>(yy * nx);
-                const float        w = k[static_cast<std::size_t>(j + r)];
-                for (std::int64_t x = 0; x < nx; ++x)
-                {
-                  orow[x] += w * row[x];
-                }
-              }
-            }
+            this->ConvolveSliceAlongY(in, out, zs, k);
           }
           else
           {
-            std::fill(o, o + slice, 0.0f);
-            for (std::int64_t j = -r; j <= r; ++j)
-            {
-              const std::int64_t zz = std::clamp<std::int64_t>(z + j, 0, nz - 1);
-              const float *      plane = in + static_cast<std::size_t>(zz) * slice;
-              const float        w = k[static_cast<std::size_t>(j + r)];
-              for (std::size_t i = 0; i < slice; ++i)
-              {
-                o[i] += w * plane[i];
-              }
-            }
+            this->ConvolveSliceAlongZ(in, out, zs, k);
           }
         }
       },
       m_WorkUnits);
+  }
+
+  /** Convolve along x, slice zs: the kernel's inner product per voxel, clamped indices
+   * only within r of the row's ends. */
+  void
+  ConvolveSliceAlongX(const float * in, float * out, std::size_t zs, const std::vector<float> & k) const
+  {
+    const std::int64_t nx = m_Size[0];
+    const std::int64_t ny = m_Size[1];
+    const std::int64_t r = static_cast<std::int64_t>(k.size() / 2);
+    const auto         slice = static_cast<std::size_t>(nx * ny);
+    float *            o = out + zs * slice;
+    for (std::int64_t y = 0; y < ny; ++y)
+    {
+      const float * row = in + zs * slice + static_cast<std::size_t>(y * nx);
+      float *       orow = o + static_cast<std::size_t>(y * nx);
+      for (std::int64_t x = 0; x < nx; ++x)
+      {
+        float sum = 0.0f;
+        if (x >= r && x + r < nx)
+        {
+          const float * p = row + (x - r);
+          for (std::size_t j = 0; j < k.size(); ++j)
+          {
+            sum += k[j] * p[j];
+          }
+        }
+        else
+        {
+          for (std::int64_t j = -r; j <= r; ++j)
+          {
+            sum += k[static_cast<std::size_t>(j + r)] * row[std::clamp<std::int64_t>(x + j, 0, nx - 1)];
+          }
+        }
+        orow[x] = sum;
+      }
+    }
+  }
+
+  /** Convolve along y, slice zs: whole rows weighted and summed. */
+  void
+  ConvolveSliceAlongY(const float * in, float * out, std::size_t zs, const std::vector<float> & k) const
+  {
+    const std::int64_t nx = m_Size[0];
+    const std::int64_t ny = m_Size[1];
+    const std::int64_t r = static_cast<std::int64_t>(k.size() / 2);
+    const auto         slice = static_cast<std::size_t>(nx * ny);
+    float *            o = out + zs * slice;
+    for (std::int64_t y = 0; y < ny; ++y)
+    {
+      float * orow = o + static_cast<std::size_t>(y * nx);
+      std::fill(orow, orow + nx, 0.0f);
+      for (std::int64_t j = -r; j <= r; ++j)
+      {
+        const std::int64_t yy = std::clamp<std::int64_t>(y + j, 0, ny - 1);
+        const float *      row = in + zs * slice + static_cast<std::size_t>(yy * nx);
+        const float        w = k[static_cast<std::size_t>(j + r)];
+        for (std::int64_t x = 0; x < nx; ++x)
+        {
+          orow[x] += w * row[x];
+        }
+      }
+    }
+  }
+
+  /** Convolve along z, slice zs: whole slices weighted and summed. */
+  void
+  ConvolveSliceAlongZ(const float * in, float * out, std::size_t zs, const std::vector<float> & k) const
+  {
+    const std::int64_t nz = m_Size[2];
+    const std::int64_t r = static_cast<std::int64_t>(k.size() / 2);
+    const auto         slice = static_cast<std::size_t>(m_Size[0] * m_Size[1]);
+    const auto         z = static_cast<std::int64_t>(zs);
+    float *            o = out + zs * slice;
+    std::fill(o, o + slice, 0.0f);
+    for (std::int64_t j = -r; j <= r; ++j)
+    {
+      const std::int64_t zz = std::clamp<std::int64_t>(z + j, 0, nz - 1);
+      const float *      plane = in + static_cast<std::size_t>(zz) * slice;
+      const float        w = k[static_cast<std::size_t>(j + r)];
+      for (std::size_t i = 0; i < slice; ++i)
+      {
+        o[i] += w * plane[i];
+      }
+    }
   }
 
   /** Catmull-Rom (interpolating cubic) in each direction, clamped at the faces. A

@@ -151,6 +151,139 @@ struct IsQuadEdgeMesh : std::false_type
 template <typename T>
 struct IsQuadEdgeMesh<T, std::void_t<typename T::QEPrimal>> : std::true_type
 {};
+
+/** Source point identifier -> index of the point in an IndexedTriangleMesh: a table
+ * where the identifiers are compact (the largest below 4 per point plus 1024), else
+ * a hash map. Insert and IndexOf stay inline: they run once per point and once per
+ * corner of every cell. */
+class MeshExtraction_EXPORT PointIdentifierMap
+{
+public:
+  static constexpr std::uint32_t Missing = std::numeric_limits<std::uint32_t>::max();
+
+  PointIdentifierMap(IdentifierType maximumIdentifier, std::size_t numberOfPoints);
+
+  void
+  Insert(IdentifierType id, std::uint32_t index)
+  {
+    if (m_Dense)
+    {
+      m_Table[id] = index;
+    }
+    else
+    {
+      m_Hash.emplace(id, index);
+    }
+  }
+
+  /** The index of point `id`; an itk::ExceptionObject naming cell `cellId` if the
+   * mesh has no such point. */
+  std::uint32_t
+  IndexOf(IdentifierType id, IdentifierType cellId) const
+  {
+    std::uint32_t index = Missing;
+    if (m_Dense)
+    {
+      if (id <= m_MaximumIdentifier)
+      {
+        index = m_Table[id];
+      }
+    }
+    else
+    {
+      const auto found = m_Hash.find(id);
+      if (found != m_Hash.end())
+      {
+        index = found->second;
+      }
+    }
+    if (index == Missing)
+    {
+      ThrowMissingPoint(id, cellId);
+    }
+    return index;
+  }
+
+private:
+  [[noreturn]] static void
+  ThrowMissingPoint(IdentifierType id, IdentifierType cellId);
+
+  IdentifierType                                    m_MaximumIdentifier;
+  bool                                              m_Dense;
+  std::vector<std::uint32_t>                        m_Table;
+  std::unordered_map<IdentifierType, std::uint32_t> m_Hash;
+};
+
+/** Appends the points of a mesh's point container to `out` (points and pointIds, in
+ * container order) and returns the map from their identifiers to their indices. */
+template <typename TPointsContainer>
+PointIdentifierMap
+CopyPoints(const TPointsContainer & points, IndexedTriangleMesh & out)
+{
+  if (points.Size() >= std::numeric_limits<std::uint32_t>::max())
+  {
+    itkGenericExceptionMacro("MeshExtraction: mesh has " << points.Size()
+                                                         << " points, more than the supported 2^32 - 1.");
+  }
+  out.points.reserve(points.Size());
+  out.pointIds.reserve(points.Size());
+  IdentifierType maxId = 0;
+  for (auto it = points.Begin(); it != points.End(); ++it)
+  {
+    maxId = std::max<IdentifierType>(maxId, it.Index());
+  }
+  PointIdentifierMap map(maxId, points.Size());
+  for (auto it = points.Begin(); it != points.End(); ++it)
+  {
+    map.Insert(it.Index(), static_cast<std::uint32_t>(out.points.size()));
+    out.points.push_back(ToVec3(it.Value()));
+    out.pointIds.push_back(it.Index());
+  }
+  return map;
+}
+
+/** Appends cell `cellId` to `out`: a triangle as it is, a quadrilateral split along
+ * its shorter diagonal, a vertex or line cell only counted; any other polygon raises
+ * an itk::ExceptionObject. */
+template <typename TCell>
+void
+AppendCell(const TCell & cell, IdentifierType cellId, const PointIdentifierMap & map, IndexedTriangleMesh & out)
+{
+  const auto type = cell.GetType();
+  if (type == CellGeometryEnum::VERTEX_CELL || type == CellGeometryEnum::LINE_CELL ||
+      type == CellGeometryEnum::QUADRATIC_EDGE_CELL)
+  {
+    ++out.numberOfIgnoredCells;
+    return;
+  }
+  const auto n = cell.GetNumberOfPoints();
+  if (n != 3 && n != 4)
+  {
+    itkGenericExceptionMacro("MeshExtraction: cell " << cellId << " is a polygon with " << n
+                                                     << " points; only triangles and quadrilaterals "
+                                                        "(split along the shorter diagonal) are measured.");
+  }
+  std::uint32_t ids[4];
+  unsigned int  k = 0;
+  for (auto p = cell.PointIdsBegin(); p != cell.PointIdsEnd() && k < 4; ++p)
+  {
+    ids[k++] = map.IndexOf(*p, cellId);
+  }
+  if (n == 3)
+  {
+    out.triangles.push_back({ ids[0], ids[1], ids[2] });
+    out.cellIds.push_back(cellId);
+    return;
+  }
+  TriangleIndices t0;
+  TriangleIndices t1;
+  SplitQuad(out, ids, t0, t1);
+  out.triangles.push_back(t0);
+  out.triangles.push_back(t1);
+  out.cellIds.push_back(cellId);
+  out.cellIds.push_back(cellId);
+  ++out.numberOfSplitQuads;
+}
 } // namespace Detail
 
 /** Copy an itk::Mesh or itk::QuadEdgeMesh into flat arrays.
@@ -170,62 +303,8 @@ MakeIndexedTriangleMesh(const TMesh & mesh)
   {
     return out;
   }
-  if (points->Size() >= std::numeric_limits<std::uint32_t>::max())
-  {
-    itkGenericExceptionMacro("MeshExtraction: mesh has " << points->Size()
-                                                         << " points, more than the supported 2^32 - 1.");
-  }
-  out.points.reserve(points->Size());
-  out.pointIds.reserve(points->Size());
-  IdentifierType maxId = 0;
-  for (auto it = points->Begin(); it != points->End(); ++it)
-  {
-    maxId = std::max<IdentifierType>(maxId, it.Index());
-  }
-  constexpr std::uint32_t    missing = std::numeric_limits<std::uint32_t>::max();
-  const bool                 dense = maxId < 4 * static_cast<IdentifierType>(points->Size()) + 1024;
-  std::vector<std::uint32_t> denseMap(dense ? maxId + 1 : 0, missing);
-  std::unordered_map<IdentifierType, std::uint32_t> sparseMap;
-  for (auto it = points->Begin(); it != points->End(); ++it)
-  {
-    const auto index = static_cast<std::uint32_t>(out.points.size());
-    if (dense)
-    {
-      denseMap[it.Index()] = index;
-    }
-    else
-    {
-      sparseMap.emplace(it.Index(), index);
-    }
-    out.points.push_back(ToVec3(it.Value()));
-    out.pointIds.push_back(it.Index());
-  }
-  auto lookup = [&](IdentifierType id, IdentifierType cellId) -> std::uint32_t {
-    std::uint32_t index = missing;
-    if (dense)
-    {
-      if (id <= maxId)
-      {
-        index = denseMap[id];
-      }
-    }
-    else
-    {
-      const auto found = sparseMap.find(id);
-      if (found != sparseMap.end())
-      {
-        index = found->second;
-      }
-    }
-    if (index == missing)
-    {
-      itkGenericExceptionMacro("MeshExtraction: cell " << cellId << " references point " << id
-                                                       << ", which the mesh does not have.");
-    }
-    return index;
-  };
-
-  const auto * cells = mesh.GetCells();
+  const Detail::PointIdentifierMap map = Detail::CopyPoints(*points, out);
+  const auto *                     cells = mesh.GetCells();
   if (cells == nullptr)
   {
     return out;
@@ -234,46 +313,9 @@ MakeIndexedTriangleMesh(const TMesh & mesh)
   out.cellIds.reserve(cells->Size());
   for (auto it = cells->Begin(); it != cells->End(); ++it)
   {
-    const auto * cell = it.Value();
-    if (cell == nullptr)
+    if (it.Value() != nullptr)
     {
-      continue;
-    }
-    const auto type = cell->GetType();
-    if (type == CellGeometryEnum::VERTEX_CELL || type == CellGeometryEnum::LINE_CELL ||
-        type == CellGeometryEnum::QUADRATIC_EDGE_CELL)
-    {
-      ++out.numberOfIgnoredCells;
-      continue;
-    }
-    const auto n = cell->GetNumberOfPoints();
-    if (n != 3 && n != 4)
-    {
-      itkGenericExceptionMacro("MeshExtraction: cell " << it.Index() << " is a polygon with " << n
-                                                       << " points; only triangles and quadrilaterals "
-                                                          "(split along the shorter diagonal) are measured.");
-    }
-    std::uint32_t ids[4];
-    unsigned int  k = 0;
-    for (auto p = cell->PointIdsBegin(); p != cell->PointIdsEnd() && k < 4; ++p)
-    {
-      ids[k++] = lookup(*p, it.Index());
-    }
-    if (n == 3)
-    {
-      out.triangles.push_back({ ids[0], ids[1], ids[2] });
-      out.cellIds.push_back(it.Index());
-    }
-    else
-    {
-      TriangleIndices t0;
-      TriangleIndices t1;
-      SplitQuad(out, ids, t0, t1);
-      out.triangles.push_back(t0);
-      out.triangles.push_back(t1);
-      out.cellIds.push_back(it.Index());
-      out.cellIds.push_back(it.Index());
-      ++out.numberOfSplitQuads;
+      Detail::AppendCell(*it.Value(), it.Index(), map, out);
     }
   }
   return out;

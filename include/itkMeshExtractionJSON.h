@@ -18,8 +18,8 @@
 #ifndef itkMeshExtractionJSON_h
 #define itkMeshExtractionJSON_h
 
-#include <cmath>
-#include <cstdio>
+#include "MeshExtractionExport.h"
+
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -36,15 +36,8 @@ struct JSONNumber
   double value;
 };
 
-inline std::ostream &
-operator<<(std::ostream & os, const JSONNumber & number)
-{
-  if (std::isfinite(number.value))
-  {
-    return os << number.value;
-  }
-  return os << "null";
-}
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & os, const JSONNumber & number);
 
 /** A string as a JSON string, quoted, with quotes, backslashes and control characters
  * escaped: `os << JSONString{ name }`. \ingroup MeshExtraction */
@@ -53,29 +46,8 @@ struct JSONString
   const std::string & value;
 };
 
-inline std::ostream &
-operator<<(std::ostream & os, const JSONString & text)
-{
-  os << '"';
-  for (const char c : text.value)
-  {
-    if (c == '"' || c == '\\')
-    {
-      os << '\\' << c;
-    }
-    else if (static_cast<unsigned char>(c) < 0x20)
-    {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\u%04x", static_cast<unsigned int>(c));
-      os << escaped;
-    }
-    else
-    {
-      os << c;
-    }
-  }
-  return os << '"';
-}
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & os, const JSONString & text);
 
 /** What `printable.PrintJSON(os)` writes, as a string (the calculators' GetReportAsJSON()). */
 template <typename TPrintable>

@@ -37,18 +37,11 @@ ThreadNumberOfWorkUnits();
  * units use `numberOfWorkUnits`: a filter sets it from its own NumberOfWorkUnits at the
  * start of GenerateData, so every stage (including the free functions it calls)
  * honours SetNumberOfWorkUnits(). \ingroup MeshExtraction */
-class ScopedNumberOfWorkUnits
+class MeshExtraction_EXPORT ScopedNumberOfWorkUnits
 {
 public:
-  explicit ScopedNumberOfWorkUnits(unsigned int numberOfWorkUnits)
-      : m_Previous(ThreadNumberOfWorkUnits())
-  {
-    ThreadNumberOfWorkUnits() = numberOfWorkUnits;
-  }
-  ~ScopedNumberOfWorkUnits()
-  {
-    ThreadNumberOfWorkUnits() = m_Previous;
-  }
+  explicit ScopedNumberOfWorkUnits(unsigned int numberOfWorkUnits);
+  ~ScopedNumberOfWorkUnits();
   ScopedNumberOfWorkUnits(const ScopedNumberOfWorkUnits &) = delete;
   ScopedNumberOfWorkUnits &
   operator=(const ScopedNumberOfWorkUnits &) = delete;

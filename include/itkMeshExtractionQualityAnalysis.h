@@ -19,14 +19,16 @@
 #define itkMeshExtractionQualityAnalysis_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+// The two checks the report runs, each a unit of its own, declared here too for
+// the code that includes this header for them.
+#include "itkMeshExtractionRayParity.h"
+#include "itkMeshExtractionSelfIntersections.h"
 
 #include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace itk
@@ -159,89 +161,6 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
                     const IndexedTriangleMesh *        reference = nullptr,
                     std::vector<TriangleMeasures> *    measures = nullptr,
                     std::vector<double> *              vertexSmoothness = nullptr);
-
-/** Orientation of every closed-surface triangle by ray-crossing parity: +1 if its
- * normal points out of the enclosed volume, -1 if into it, 0 if undetermined
- * (every ray tried grazed an edge or vertex) or degenerate. */
-MeshExtraction_EXPORT std::vector<int>
-ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance = 1e-6);
-
-/** For every component of `mesh` (numbered as in `topology`), the vertex its nesting
- * rays start from (ComponentNestingParity): the first vertex of its first triangle;
- * UINT32_MAX for a component without triangles. */
-MeshExtraction_EXPORT std::vector<std::uint32_t>
-                      ComponentRayVertices(const IndexedTriangleMesh & mesh, const MeshTopology & topology);
-
-/** For every component of `mesh` (numbered as in `topology`), whether it lies inside
- * an odd (1) or even (0) number of the other components: the parity of the crossings
- * of a ray from its ComponentRayVertices vertex with the other components' triangles; -1 if the
- * component has a boundary or every ray tried grazed an edge or vertex. A component
- * the rest of the surface swept over (a surface moving past a small piece in one
- * step, leaving no intersection behind) changes its parity, and with it whether its
- * triangles face out. Empty if the mesh has fewer than two components. */
-MeshExtraction_EXPORT std::vector<std::int8_t>
-                      ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & topology);
-
-/** FacesIntersect for faces f and g of `mesh`. */
-MeshExtraction_EXPORT bool
-MeshFacesIntersect(const IndexedTriangleMesh & mesh, std::uint32_t f, std::uint32_t g);
-
-/** Face f of `mesh` has three distinct vertices and is not exactly degenerate: the
- * faces the self-intersection searches consider. */
-MeshExtraction_EXPORT bool
-MeshFaceIsProper(const IndexedTriangleMesh & mesh, std::uint32_t f);
-
-/** The face pairs that the blocks of a parallel search found, in one sorted list. */
-MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
-                      SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> & found);
-
-/** Pairs (i < j) of non-degenerate faces that intersect away from their shared
- * vertices and edge, sorted. With `queries`, only pairs that include one of
- * those triangles are sought (e.g. the faces that moved since the last check). */
-MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
-FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries = nullptr);
-
-class TriangleAABBTree;
-
-/** What a search over most of a mesh's faces (FindSelfIntersections with a tree and
- * a cache) keeps for the next search on the same mesh, after its vertices moved a
- * little and a few faces changed vertices (as relaxation and edge swaps do).
- *
- * The caller sets `margin` (> 0, in the mesh's units) and builds the tree with boxes
- * that contain each face's own box grown by margin / 2 on every side. A full search
- * (a "rebuild") keeps the points and faces, and the pairs of faces without a common
- * vertex whose grown boxes overlap ("near pairs"). A later search calls a face
- * "moved" if it changed vertices or one of its vertices is 0.45 margin or more from
- * where it was. Two faces that did not move were more than a margin apart at the
- * rebuild unless they are a near pair, and each moved less than half of it, so they
- * cannot meet now: only near pairs, faces that meet at a vertex whose fan is not
- * certified now (CertifyFan), and pairs with a moved face (one tree query per moved
- * face) are tested. The pairs found are exactly those of the full search. When more
- * than a quarter of the faces moved, or the margin changed, the search is a rebuild
- * again. */
-struct SelfIntersectionCache
-{
-  double margin{ 0.0 };
-  double marginOfNearPairs{ 0.0 }; ///< the margin of the last rebuild
-
-  LargeBlockVector<Vec3>                                            points;
-  LargeBlockVector<TriangleIndices>                                 triangles;
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> nearPairs; ///< in blocks
-  std::size_t                                                       numberOfRebuilds{ 0 };
-  std::size_t                                                       numberOfIncrementalSearches{ 0 };
-};
-
-/** The same, with a tree built by the caller over all triangles with boxes that
- * contain the triangles' current positions (see TriangleAABBTree::Build): repeated
- * checks while vertices move inside those boxes need no rebuild. With `cache` (the
- * same one on every call for one mesh), a search over more than a quarter of the
- * faces tests only what may have changed since the last full one
- * (SelfIntersectionCache); the result is the same. */
-MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
-                      FindSelfIntersections(const IndexedTriangleMesh &        mesh,
-                                            const std::vector<std::uint32_t> & queries,
-                                            const TriangleAABBTree &           tree,
-                                            SelfIntersectionCache *            cache = nullptr);
 
 } // namespace MeshExtraction
 } // namespace itk

@@ -18,6 +18,7 @@
 #ifndef itkMeshExtractionScaleSpaceEdgeDetector_h
 #define itkMeshExtractionScaleSpaceEdgeDetector_h
 
+#include "MeshExtractionExport.h"
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionGaussianScaleSpace.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
@@ -89,9 +90,9 @@ struct ScaleSpaceEdgeDetectionResult
 
 /** The smallest scale used for `requested`: `requested` if > 0, else the voxel length
  * of thesis section 4.2.1, taken as the smallest spacing, the finest detail the image
- * resolves (on 1 x 1 x 2.5 mm voxels the largest spacing as the finest scale would
- * dislocate curved edges by sigma^2 times the curvature: 0.4 mm instead of 0.1 mm on
- * the ellipsoid of the tests). */
+ * resolves (on anisotropic voxels the largest spacing as the finest scale would
+ * dislocate curved edges by sigma^2 times the curvature, that is by the square of
+ * the spacings' ratio more). */
 template <typename TSpacing>
 double
 ResolveMinimumScale(const TSpacing & spacing, double requested)
@@ -103,6 +104,37 @@ ResolveMinimumScale(const TSpacing & spacing, double requested)
   return std::min(
     { static_cast<double>(spacing[0]), static_cast<double>(spacing[1]), static_cast<double>(spacing[2]) });
 }
+
+/** What is wrong with the parameters of a step (empty if nothing):
+ * ScaleSpaceEdgeDetector::CheckParameters. */
+MeshExtraction_EXPORT std::string
+                      DescribeInvalidEdgeDetectionParameters(const ScaleSpaceEdgeDetectionParameters & p);
+
+/** The sum of the un-normalised normals of the triangles at every point: the
+ * direction a vertex's line takes where the image has no gradient. */
+MeshExtraction_EXPORT std::vector<Vec3>
+                      VertexNormalSums(const IndexedTriangleMesh & mesh);
+
+/** The centroid and the un-normalised normal of every triangle of `triangles` over
+ * `points`: the starts and fallback directions of the inaccuracy's searches. */
+MeshExtraction_EXPORT void
+TriangleCentroidsAndNormals(const std::vector<Vec3> &            points,
+                            const std::vector<TriangleIndices> & triangles,
+                            std::vector<Vec3> &                  centroids,
+                            std::vector<Vec3> &                  normals);
+
+/** The guard of an edge-detection move (the checks of IsValidVertexMove()) on the
+ * triangles at vertex v of `mesh` moved to `candidate`: no triangle turns by 90
+ * degrees or more against its orientation now or at `startPositions`, none becomes
+ * degenerate (q_area <= tolerance) or, if already degenerate, worse. */
+MeshExtraction_EXPORT bool
+IsValidEdgeDetectionMove(const IndexedTriangleMesh & mesh,
+                         const MeshTopology &        topology,
+                         const std::vector<Vec3> &   startPositions,
+                         std::size_t                 v,
+                         const Vec3 &                candidate,
+                         double                      tolerance);
+
 
 /** \class ScaleSpaceEdgeDetector
  * \brief One scale-space edge-detection step on a triangle QuadEdgeMesh, in place:
@@ -136,30 +168,7 @@ public:
   static std::string
   CheckParameters(const ParametersType & p)
   {
-    std::ostringstream s;
-    if (!(p.maximumDeviation > 0.0) || !std::isfinite(p.maximumDeviation))
-    {
-      s << "MaximumDeviation must be a positive, finite distance in mm (the capture range of the edge detector), got "
-        << p.maximumDeviation;
-    }
-    else if (!(p.minimumScale >= 0.0) || !std::isfinite(p.minimumScale))
-    {
-      s << "MinimumScale must be >= 0 mm (0: the voxel length), got " << p.minimumScale;
-    }
-    else if (p.scalesPerOctave == 0)
-    {
-      s << "NumberOfScalesPerOctave must be >= 1, got 0";
-    }
-    else if (!(p.degenerateQAreaTolerance >= 0.0 && p.degenerateQAreaTolerance < 1.0))
-    {
-      s << "DegenerateQAreaTolerance must be in [0, 1), got " << p.degenerateQAreaTolerance;
-    }
-    else if (p.searchDirection != MeshExtractionEnums::EdgeSearchDirection::ImageGradient &&
-             p.searchDirection != MeshExtractionEnums::EdgeSearchDirection::VertexNormal)
-    {
-      s << "Unknown SearchDirection " << static_cast<int>(p.searchDirection);
-    }
-    return s.str();
+    return DescribeInvalidEdgeDetectionParameters(p);
   }
 
   /** How far, in voxels, a vertex may lie beyond the image's faces: SurfaceNets closes
@@ -172,90 +181,22 @@ public:
   static std::string
   CheckInputs(const MeshType * mesh, const ImageType * image)
   {
-    std::ostringstream s;
-    if (image == nullptr)
+    std::string problem = CheckImage(image);
+    if (problem.empty())
     {
-      return "No input image: call SetInputImage() before Update()";
+      problem = CheckMesh(mesh);
     }
-    const auto region = image->GetLargestPossibleRegion();
-    if (region.GetNumberOfPixels() == 0 || !image->GetBufferedRegion().IsInside(region) ||
-        image->GetBufferPointer() == nullptr)
+    if (problem.empty())
     {
-      s << "The input image is empty or not buffered (largest possible region " << region << ")";
-      return s.str();
+      problem = DescribeVerticesOutside(*mesh, *image);
     }
-    if (mesh == nullptr)
-    {
-      return "No input mesh: call SetInput() before Update()";
-    }
-    if (mesh->GetPoints() == nullptr || mesh->GetNumberOfPoints() == 0)
-    {
-      return "The input mesh is empty: it has no points";
-    }
-    const std::string nonTriangle = QuadEdgeMeshVertexSmoother<MeshType>::DescribeNonTriangleFace(*mesh);
-    if (!nonTriangle.empty())
-    {
-      return nonTriangle;
-    }
-    std::size_t triangles = 0;
-    if (mesh->GetCells() != nullptr)
-    {
-      for (auto it = mesh->GetCells()->Begin(); it != mesh->GetCells()->End(); ++it)
-      {
-        triangles += it.Value() != nullptr && it.Value()->GetNumberOfPoints() == 3 ? 1 : 0;
-      }
-    }
-    if (triangles == 0)
-    {
-      s << "The input mesh is empty: it has " << mesh->GetNumberOfPoints() << " points but no triangles";
-      return s.str();
-    }
-    std::size_t                outside = 0;
-    IdentifierType             firstId = 0;
-    Vec3                       first(0.0);
-    ContinuousIndex<double, 3> firstIndex;
-    firstIndex.Fill(0.0);
-    for (auto it = mesh->GetPoints()->Begin(); it != mesh->GetPoints()->End(); ++it)
-    {
-      typename ImageType::PointType p;
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        p[d] = static_cast<double>(it.Value()[d]);
-      }
-      const auto ci = image->template TransformPhysicalPointToContinuousIndex<double>(p);
-      bool       inside = true;
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        // The image's extent (voxel centres +- half a voxel) and one voxel beyond it,
-        // where SurfaceNets closes objects that touch the border (nodes up to a
-        // voxel outside); the scale space is clamped at the image's faces.
-        const double lo = static_cast<double>(region.GetIndex(d)) - 0.5 - OutsideMargin;
-        const double hi = lo + static_cast<double>(region.GetSize(d)) + 2.0 * OutsideMargin;
-        inside = inside && ci[d] >= lo && ci[d] <= hi;
-      }
-      if (!inside)
-      {
-        if (outside == 0)
-        {
-          firstId = it.Index();
-          first = ToVec3(it.Value());
-          firstIndex = ci;
-        }
-        ++outside;
-      }
-    }
-    if (outside > 0)
-    {
-      s << outside << " of " << mesh->GetNumberOfPoints() << " mesh vertices lie outside the image, e.g. vertex "
-        << firstId << " at physical point " << first << " (continuous index " << firstIndex << ", image region "
-        << region.GetIndex() << " + " << region.GetSize()
-        << "): the mesh must lie in the image (or within one voxel of its faces), in the same physical "
-           "coordinates (origin, spacing, direction)";
-    }
-    return s.str();
+    return problem;
   }
 
-  /** One step on `mesh`, in place; call CheckParameters and CheckInputs first. */
+  /** One step on `mesh`, in place; call CheckParameters and CheckInputs first: the
+   * scale space over the vertices' box, the searches from the vertices, the moves
+   * through the guard and the fold check, the new positions written, and the
+   * inaccuracy searched from the triangle centroids. */
   ResultType
   Run(MeshType & mesh, const ImageType & image, const ParametersType & p)
   {
@@ -263,149 +204,38 @@ public:
     ResultType          result;
     IndexedTriangleMesh indexed = MakeIndexedTriangleMesh(mesh);
     const MeshTopology  topology = BuildMeshTopology(indexed);
-    const std::size_t   n = indexed.points.size();
-    result.numberOfVertices = n;
+    result.numberOfVertices = indexed.points.size();
     // No move may take a surface past another component (see UndoFoldingMoves).
     const ComponentReference componentsAtStart =
       p.preventInversions ? MakeComponentReference(indexed, topology) : ComponentReference{};
-    const double capture = p.maximumDeviation;
     result.scales =
-      ScaleSpaceScales(capture, ResolveMinimumScale(image.GetSpacing(), p.minimumScale), p.scalesPerOctave);
-
-    // The scale space covers the vertices' box plus the capture range.
-    Vec3 lower(std::numeric_limits<double>::infinity());
-    Vec3 upper(-std::numeric_limits<double>::infinity());
-    for (const Vec3 & x : indexed.points)
-    {
-      typename ImageType::PointType q;
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        q[d] = x[d];
-      }
-      const auto ci = image.template TransformPhysicalPointToContinuousIndex<double>(q);
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        lower[d] = std::min(lower[d], ci[d] - capture / image.GetSpacing()[d]);
-        upper[d] = std::max(upper[d], ci[d] + capture / image.GetSpacing()[d]);
-      }
-    }
-    result.scaleSpaceBuilt = m_ScaleSpace.Prepare(&image, result.scales, lower, upper, p.numberOfWorkUnits);
-    result.scaleSpaceSeconds = result.scaleSpaceBuilt ? m_ScaleSpace.GetBuildSeconds() : 0.0;
+      ScaleSpaceScales(p.maximumDeviation, ResolveMinimumScale(image.GetSpacing(), p.minimumScale), p.scalesPerOctave);
+    this->PrepareScaleSpace(indexed.points, image, p, result);
 
     // Search from every vertex.
-    std::vector<Vec3> normals(n, Vec3(0.0));
-    for (const auto & t : indexed.triangles)
-    {
-      const Vec3 normal = TriangleNormal(indexed.points[t[0]], indexed.points[t[1]], indexed.points[t[2]]);
-      for (const auto v : t)
-      {
-        normals[v] += normal;
-      }
-    }
-    std::vector<Vec3>   directions;
-    std::vector<double> offsets;
-    auto                lap = std::chrono::steady_clock::now();
-    auto                seconds = [&lap]() {
-      const auto   now = std::chrono::steady_clock::now();
-      const double s = std::chrono::duration<double>(now - lap).count();
-      lap = now;
-      return s;
-    };
-    seconds();
+    const std::vector<Vec3> normals = VertexNormalSums(indexed);
+    std::vector<Vec3>       directions;
+    std::vector<double>     offsets;
+    Stopwatch               lap;
     result.normalFallbacks += this->Search(indexed.points, normals, p, directions, offsets);
-    result.searchSeconds = seconds();
+    result.searchSeconds = lap.Lap();
 
-    // Apply the moves one by one, in point order, through the guard.
+    // Apply the moves, undo those that fold the surface, write the positions.
     const std::vector<Vec3> startPositions = indexed.points;
-    std::vector<Vec3> &     positions = indexed.points;
-    for (std::size_t v = 0; v < n; ++v)
-    {
-      const Vec3 displacement = directions[v] * offsets[v];
-      if (!(SquaredNorm(displacement) > 0.0))
-      {
-        continue;
-      }
-      if (p.preventInversions)
-      {
-        double fraction = 1.0;
-        bool   moved = false;
-        for (unsigned int s = 0; s <= p.maximumShortenings; ++s, fraction *= 0.5)
-        {
-          const Vec3 candidate = Round(positions[v] + displacement * fraction);
-          if (candidate == positions[v])
-          {
-            break;
-          }
-          if (IsValidMove(indexed, topology, startPositions, v, candidate, p.degenerateQAreaTolerance))
-          {
-            positions[v] = candidate;
-            moved = true;
-            result.shortenedMoves += s > 0 ? 1 : 0;
-            break;
-          }
-        }
-        result.rejectedMoves += moved ? 0 : 1;
-      }
-      else
-      {
-        positions[v] = Round(positions[v] + displacement);
-      }
-    }
+    ApplyMoves(indexed, topology, startPositions, directions, offsets, p, result);
     if (p.preventInversions)
     {
       result.undoneMoves =
         UndoFoldingMoves(indexed, topology, startPositions, p.degenerateQAreaTolerance, &componentsAtStart);
     }
-
-    // Write the new positions.
-    auto * meshPoints = mesh.GetPoints();
-    double sumDisplacement = 0.0;
-    for (std::size_t v = 0; v < n; ++v)
-    {
-      if (positions[v] == startPositions[v])
-      {
-        continue;
-      }
-      auto & point = meshPoints->ElementAt(static_cast<typename MeshType::PointIdentifier>(indexed.pointIds[v]));
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        point[d] = static_cast<CoordinateType>(positions[v][d]);
-      }
-      ++result.movedVertices;
-      const double l = Norm(positions[v] - startPositions[v]);
-      sumDisplacement += l;
-      result.maximumDisplacement = std::max(result.maximumDisplacement, l);
-    }
-    result.meanDisplacement = n > 0 ? sumDisplacement / static_cast<double>(n) : 0.0;
-    meshPoints->Modified();
-    mesh.Modified();
-    result.applySeconds = seconds();
+    WritePositions(mesh, indexed, startPositions, result);
+    result.applySeconds = lap.Lap();
 
     // The inaccuracy: the detector run from the triangle centroids of the result.
     if (p.computeInaccuracy && !indexed.triangles.empty())
     {
-      std::vector<Vec3> centroids;
-      std::vector<Vec3> faceNormals;
-      centroids.reserve(indexed.triangles.size());
-      faceNormals.reserve(indexed.triangles.size());
-      for (const auto & t : indexed.triangles)
-      {
-        centroids.push_back(TriangleCentroid(positions[t[0]], positions[t[1]], positions[t[2]]));
-        faceNormals.push_back(TriangleNormal(positions[t[0]], positions[t[1]], positions[t[2]]));
-      }
-      std::vector<Vec3>   centroidDirections;
-      std::vector<double> centroidOffsets;
-      result.normalFallbacks += this->Search(centroids, faceNormals, p, centroidDirections, centroidOffsets);
-      double sum = 0.0;
-      double maximum = 0.0;
-      for (const double o : centroidOffsets)
-      {
-        sum += std::abs(o);
-        maximum = std::max(maximum, std::abs(o));
-      }
-      result.inaccuracy = sum / static_cast<double>(centroidOffsets.size());
-      result.maximumInaccuracy = maximum;
-      result.inaccuracySeconds = seconds();
+      this->MeasureInaccuracy(indexed, p, result);
+      result.inaccuracySeconds = lap.Lap();
     }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
@@ -492,56 +322,261 @@ public:
   }
 
 private:
+  /** Seconds since construction or the last Lap(). */
+  class Stopwatch
+  {
+  public:
+    double
+    Lap()
+    {
+      const auto   now = std::chrono::steady_clock::now();
+      const double s = std::chrono::duration<double>(now - m_Last).count();
+      m_Last = now;
+      return s;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point m_Last{ std::chrono::steady_clock::now() };
+  };
+
   static Vec3
   Round(const Vec3 & x)
   {
     return RoundToCoordinateType<CoordinateType>(x);
   }
 
-  /** The checks of IsValidVertexMove() on the incident triangles of vertex v moved to
-   * `candidate`: no triangle turns by 90 degrees or more against its orientation now
-   * or at the start of the step, none becomes degenerate (or, if already degenerate,
-   * worse). */
-  static bool
-  IsValidMove(const IndexedTriangleMesh & mesh,
-              const MeshTopology &        topology,
-              const std::vector<Vec3> &   startPositions,
-              std::size_t                 v,
-              const Vec3 &                candidate,
-              double                      tolerance)
+  /** A missing image, or one that is empty or not buffered. */
+  static std::string
+  CheckImage(const ImageType * image)
   {
-    const auto & x = mesh.points;
-    for (std::uint32_t k = topology.vertexTriangleOffsets[v]; k < topology.vertexTriangleOffsets[v + 1]; ++k)
+    if (image == nullptr)
     {
-      const auto & t = mesh.triangles[topology.vertexTriangles[k]];
-      Vec3         now[3];
-      Vec3         moved[3];
-      Vec3         then[3];
-      for (unsigned int c = 0; c < 3; ++c)
+      return "No input image: call SetInputImage() before Update()";
+    }
+    const auto region = image->GetLargestPossibleRegion();
+    if (region.GetNumberOfPixels() == 0 || !image->GetBufferedRegion().IsInside(region) ||
+        image->GetBufferPointer() == nullptr)
+    {
+      std::ostringstream s;
+      s << "The input image is empty or not buffered (largest possible region " << region << ")";
+      return s.str();
+    }
+    return std::string();
+  }
+
+  /** A missing mesh, one without points or triangles, or a face that is not a triangle. */
+  static std::string
+  CheckMesh(const MeshType * mesh)
+  {
+    if (mesh == nullptr)
+    {
+      return "No input mesh: call SetInput() before Update()";
+    }
+    if (mesh->GetPoints() == nullptr || mesh->GetNumberOfPoints() == 0)
+    {
+      return "The input mesh is empty: it has no points";
+    }
+    const std::string nonTriangle = QuadEdgeMeshVertexSmoother<MeshType>::DescribeNonTriangleFace(*mesh);
+    if (!nonTriangle.empty())
+    {
+      return nonTriangle;
+    }
+    std::size_t triangles = 0;
+    if (mesh->GetCells() != nullptr)
+    {
+      for (auto it = mesh->GetCells()->Begin(); it != mesh->GetCells()->End(); ++it)
       {
-        now[c] = x[t[c]];
-        moved[c] = t[c] == v ? candidate : x[t[c]];
-        then[c] = startPositions[t[c]];
-      }
-      const Vec3   oldNormal = TriangleNormal(now[0], now[1], now[2]);
-      const Vec3   newNormal = TriangleNormal(moved[0], moved[1], moved[2]);
-      const double oldQ = TriangleQArea(now[0], now[1], now[2]);
-      const double newQ = TriangleQArea(moved[0], moved[1], moved[2]);
-      if (oldQ > 0.0 && !(Dot(oldNormal, newNormal) > 0.0))
-      {
-        return false;
-      }
-      if (oldQ > tolerance ? !(newQ > tolerance) : !(newQ >= oldQ))
-      {
-        return false;
-      }
-      if (TriangleQArea(then[0], then[1], then[2]) > 0.0 &&
-          !(Dot(TriangleNormal(then[0], then[1], then[2]), newNormal) > 0.0))
-      {
-        return false;
+        triangles += it.Value() != nullptr && it.Value()->GetNumberOfPoints() == 3 ? 1 : 0;
       }
     }
-    return true;
+    if (triangles == 0)
+    {
+      std::ostringstream s;
+      s << "The input mesh is empty: it has " << mesh->GetNumberOfPoints() << " points but no triangles";
+      return s.str();
+    }
+    return std::string();
+  }
+
+  /** The vertices more than OutsideMargin voxels outside the image, counted and the
+   * first one described (empty if none). The image's extent is the voxel centres
+   * +- half a voxel; SurfaceNets closes objects that touch the border with nodes up
+   * to a voxel beyond it, and the scale space is clamped at the image's faces. */
+  static std::string
+  DescribeVerticesOutside(const MeshType & mesh, const ImageType & image)
+  {
+    const auto                 region = image.GetLargestPossibleRegion();
+    std::size_t                outside = 0;
+    IdentifierType             firstId = 0;
+    Vec3                       first(0.0);
+    ContinuousIndex<double, 3> firstIndex;
+    firstIndex.Fill(0.0);
+    for (auto it = mesh.GetPoints()->Begin(); it != mesh.GetPoints()->End(); ++it)
+    {
+      typename ImageType::PointType p;
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        p[d] = static_cast<double>(it.Value()[d]);
+      }
+      const auto ci = image.template TransformPhysicalPointToContinuousIndex<double>(p);
+      bool       inside = true;
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        const double lo = static_cast<double>(region.GetIndex(d)) - 0.5 - OutsideMargin;
+        const double hi = lo + static_cast<double>(region.GetSize(d)) + 2.0 * OutsideMargin;
+        inside = inside && ci[d] >= lo && ci[d] <= hi;
+      }
+      if (!inside)
+      {
+        if (outside == 0)
+        {
+          firstId = it.Index();
+          first = ToVec3(it.Value());
+          firstIndex = ci;
+        }
+        ++outside;
+      }
+    }
+    std::ostringstream s;
+    if (outside > 0)
+    {
+      s << outside << " of " << mesh.GetNumberOfPoints() << " mesh vertices lie outside the image, e.g. vertex "
+        << firstId << " at physical point " << first << " (continuous index " << firstIndex << ", image region "
+        << region.GetIndex() << " + " << region.GetSize()
+        << "): the mesh must lie in the image (or within one voxel of its faces), in the same physical "
+           "coordinates (origin, spacing, direction)";
+    }
+    return s.str();
+  }
+
+  /** Makes the scale space cover the vertices' box plus the capture range (rebuilt
+   * only if needed), and records whether it was rebuilt and the time it took. */
+  void
+  PrepareScaleSpace(const std::vector<Vec3> & points,
+                    const ImageType &         image,
+                    const ParametersType &    p,
+                    ResultType &              result)
+  {
+    const double capture = p.maximumDeviation;
+    Vec3         lower(std::numeric_limits<double>::infinity());
+    Vec3         upper(-std::numeric_limits<double>::infinity());
+    for (const Vec3 & x : points)
+    {
+      typename ImageType::PointType q;
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        q[d] = x[d];
+      }
+      const auto ci = image.template TransformPhysicalPointToContinuousIndex<double>(q);
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        lower[d] = std::min(lower[d], ci[d] - capture / image.GetSpacing()[d]);
+        upper[d] = std::max(upper[d], ci[d] + capture / image.GetSpacing()[d]);
+      }
+    }
+    result.scaleSpaceBuilt = m_ScaleSpace.Prepare(&image, result.scales, lower, upper, p.numberOfWorkUnits);
+    result.scaleSpaceSeconds = result.scaleSpaceBuilt ? m_ScaleSpace.GetBuildSeconds() : 0.0;
+  }
+
+  /** The moves (directions[v] offsets[v]) applied one by one, in point order, each
+   * rounded to the mesh's coordinate type; with the guard, a move is halved up to
+   * maximumShortenings times until IsValidEdgeDetectionMove accepts it, else rejected. */
+  static void
+  ApplyMoves(IndexedTriangleMesh &       indexed,
+             const MeshTopology &        topology,
+             const std::vector<Vec3> &   startPositions,
+             const std::vector<Vec3> &   directions,
+             const std::vector<double> & offsets,
+             const ParametersType &      p,
+             ResultType &                result)
+  {
+    std::vector<Vec3> & positions = indexed.points;
+    for (std::size_t v = 0; v < positions.size(); ++v)
+    {
+      const Vec3 displacement = directions[v] * offsets[v];
+      if (!(SquaredNorm(displacement) > 0.0))
+      {
+        continue;
+      }
+      if (!p.preventInversions)
+      {
+        positions[v] = Round(positions[v] + displacement);
+        continue;
+      }
+      double fraction = 1.0;
+      bool   moved = false;
+      for (unsigned int s = 0; s <= p.maximumShortenings; ++s, fraction *= 0.5)
+      {
+        const Vec3 candidate = Round(positions[v] + displacement * fraction);
+        if (candidate == positions[v])
+        {
+          break;
+        }
+        if (IsValidEdgeDetectionMove(indexed, topology, startPositions, v, candidate, p.degenerateQAreaTolerance))
+        {
+          positions[v] = candidate;
+          moved = true;
+          result.shortenedMoves += s > 0 ? 1 : 0;
+          break;
+        }
+      }
+      result.rejectedMoves += moved ? 0 : 1;
+    }
+  }
+
+  /** Writes the positions that changed into `mesh`, counting the moved vertices and
+   * measuring the mean (over all vertices) and largest displacement. */
+  static void
+  WritePositions(MeshType &                  mesh,
+                 const IndexedTriangleMesh & indexed,
+                 const std::vector<Vec3> &   startPositions,
+                 ResultType &                result)
+  {
+    const std::vector<Vec3> & positions = indexed.points;
+    const std::size_t         n = positions.size();
+    auto *                    meshPoints = mesh.GetPoints();
+    double                    sumDisplacement = 0.0;
+    for (std::size_t v = 0; v < n; ++v)
+    {
+      if (positions[v] == startPositions[v])
+      {
+        continue;
+      }
+      auto & point = meshPoints->ElementAt(static_cast<typename MeshType::PointIdentifier>(indexed.pointIds[v]));
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        point[d] = static_cast<CoordinateType>(positions[v][d]);
+      }
+      ++result.movedVertices;
+      const double l = Norm(positions[v] - startPositions[v]);
+      sumDisplacement += l;
+      result.maximumDisplacement = std::max(result.maximumDisplacement, l);
+    }
+    result.meanDisplacement = n > 0 ? sumDisplacement / static_cast<double>(n) : 0.0;
+    meshPoints->Modified();
+    mesh.Modified();
+  }
+
+  /** The mean and largest distance from the triangle centroids to the edges the
+   * detector finds from them (thesis section 4.2.3). */
+  void
+  MeasureInaccuracy(const IndexedTriangleMesh & indexed, const ParametersType & p, ResultType & result) const
+  {
+    std::vector<Vec3> centroids;
+    std::vector<Vec3> faceNormals;
+    TriangleCentroidsAndNormals(indexed.points, indexed.triangles, centroids, faceNormals);
+    std::vector<Vec3>   centroidDirections;
+    std::vector<double> centroidOffsets;
+    result.normalFallbacks += this->Search(centroids, faceNormals, p, centroidDirections, centroidOffsets);
+    double sum = 0.0;
+    double maximum = 0.0;
+    for (const double o : centroidOffsets)
+    {
+      sum += std::abs(o);
+      maximum = std::max(maximum, std::abs(o));
+    }
+    result.inaccuracy = sum / static_cast<double>(centroidOffsets.size());
+    result.maximumInaccuracy = maximum;
   }
 
   ScaleSpaceType m_ScaleSpace;

@@ -136,6 +136,12 @@ TriangleBox(const IndexedTriangleMesh & mesh, std::uint32_t triangle)
  * Built top-down by median splits along the widest axis of the triangle centroids,
  * stored depth-first in one array. The tree keeps a pointer to the mesh, which
  * must outlive it. Queries are const and thread-safe.
+ *
+ * The traversals (VisitOverlapping, VisitOverlappingPairs, VisitRay) are templates
+ * on the visitor and stay in this header, as do SplitPair and the box tests of
+ * AxisAlignedBox and TriangleBox: they run for every node and primitive a query
+ * visits, where a call that cannot be inlined would cost as much as the test itself.
+ * Building and refitting, once per tree, are in the .cxx.
  * \ingroup MeshExtraction
  */
 class MeshExtraction_EXPORT TriangleAABBTree
@@ -232,29 +238,7 @@ public:
    * split breadth-first until there are at least `minimumNumberOfPairs` (or nothing is
    * left to split), so that VisitOverlappingPairs can work on them in parallel. */
   std::vector<NodePair>
-  SplitOverlappingPairs(std::size_t minimumNumberOfPairs) const
-  {
-    std::vector<NodePair> pairs;
-    if (m_Nodes.empty())
-    {
-      return pairs;
-    }
-    pairs.emplace_back(0, 0);
-    for (;;)
-    {
-      std::vector<NodePair> next;
-      bool                  split = false;
-      for (const auto & p : pairs)
-      {
-        split = this->SplitPair(p, next) || split;
-      }
-      pairs.swap(next);
-      if (!split || pairs.size() >= minimumNumberOfPairs)
-      {
-        return pairs;
-      }
-    }
-  }
+  SplitOverlappingPairs(std::size_t minimumNumberOfPairs) const;
 
   /** Calls visit(a, b), a != b triangles, once for every unordered pair of primitives
    * under the node pair whose boxes overlap. */
@@ -355,6 +339,14 @@ public:
   }
 
 private:
+  /** (Morton code, slot) of every primitive slot, sorted. */
+  using MortonKeys = LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>>;
+
+  /** The nodes, top-down, over the slots in the order of `keys`: each range splits
+   * where the highest differing bit of its codes changes, leaves hold up to 16 slots. */
+  void
+  BuildNodes(const MortonKeys & keys);
+
   /** Node boxes bottom-up from the primitives' boxes. */
   void
   FitNodeBoxes();
@@ -415,8 +407,8 @@ private:
   };
 
   const IndexedTriangleMesh * m_Mesh{ nullptr };
-  // Large arrays on huge pages (LargeBlockVector): a first-touched 4 KiB page costs
-  // about 15 us on a VM, and the arrays of a 222,000-triangle tree span 4,000 pages.
+  // Large arrays on huge pages (LargeBlockVector): the trees of large meshes span
+  // thousands of 4 KiB pages, and each first touch of one costs a page fault.
   LargeBlockVector<Node>          m_Nodes;
   LargeBlockVector<std::uint32_t> m_Triangles; ///< triangle of each primitive slot
   AxisAlignedBoxArray             m_Boxes;     ///< box of each primitive slot

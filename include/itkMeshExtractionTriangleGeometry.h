@@ -18,6 +18,7 @@
 #ifndef itkMeshExtractionTriangleGeometry_h
 #define itkMeshExtractionTriangleGeometry_h
 
+#include "MeshExtractionExport.h"
 #include "itkVector.h"
 #include "itkMath.h"
 
@@ -34,6 +35,13 @@ namespace itk
  * triangle and ray-triangle intersection. Every filter and calculator calls these
  * functions so that a triangle is measured the same way everywhere.
  * Computation is in double precision whatever the mesh's coordinate type.
+ *
+ * The small primitives (Dot, Cross, norms, normals, q_area, cotangents, closest point
+ * on a triangle, ray-triangle test, ...) are inline here: they run in the inner loops
+ * of relaxation, smoothing, edge swaps and tree queries, where a call that the
+ * compiler cannot inline would cost as much as the arithmetic. The larger measures
+ * that are not in such loops (MeasureTriangle, the circumcircle) are in
+ * src/itkMeshExtractionTriangleGeometry.cxx.
  *
  * \ingroup MeshExtraction
  */
@@ -147,49 +155,8 @@ struct TriangleMeasures
 
 /** Measure a triangle. A triangle with a zero-length edge gets qLength = qAngle =
  * qArea = 0, minimum angle 0 and maximum angle pi. */
-inline TriangleMeasures
-MeasureTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & c)
-{
-  TriangleMeasures m{};
-  const Vec3       ab = b - a;
-  const Vec3       bc = c - b;
-  const Vec3       ca = a - c;
-  m.edgeLength[0] = Norm(bc);
-  m.edgeLength[1] = Norm(ca);
-  m.edgeLength[2] = Norm(ab);
-  const double twiceArea = Norm(Cross(ab, -ca));
-  m.area = 0.5 * twiceArea;
-  const double sumSq =
-    m.edgeLength[0] * m.edgeLength[0] + m.edgeLength[1] * m.edgeLength[1] + m.edgeLength[2] * m.edgeLength[2];
-  const double minEdge = std::min({ m.edgeLength[0], m.edgeLength[1], m.edgeLength[2] });
-  const double maxEdge = std::max({ m.edgeLength[0], m.edgeLength[1], m.edgeLength[2] });
-  if (!(minEdge > 0.0))
-  {
-    m.angle[0] = m.angle[1] = m.angle[2] = 0.0;
-    for (unsigned i = 0; i < 3; ++i)
-    {
-      if (m.edgeLength[i] > 0.0)
-      {
-        m.angle[i] = itk::Math::pi;
-      }
-    }
-    m.minAngle = 0.0;
-    m.maxAngle = itk::Math::pi;
-    return m;
-  }
-  m.angle[0] = AngleBetween(ab, -ca);
-  m.angle[1] = AngleBetween(bc, -ab);
-  m.angle[2] = AngleBetween(ca, -bc);
-  m.minAngle = std::min({ m.angle[0], m.angle[1], m.angle[2] });
-  m.maxAngle = std::max({ m.angle[0], m.angle[1], m.angle[2] });
-  m.qLength = minEdge / maxEdge;
-  m.qAngle = m.maxAngle > 0.0 ? m.minAngle / m.maxAngle : 0.0;
-  m.qArea = 4.0 * std::sqrt(3.0) * m.area / sumSq;
-  // Rounding can push an equilateral triangle a hair above 1.
-  m.qAngle = std::min(m.qAngle, 1.0);
-  m.qArea = std::min(m.qArea, 1.0);
-  return m;
-}
+MeshExtraction_EXPORT TriangleMeasures
+MeasureTriangle(const Vec3 & a, const Vec3 & b, const Vec3 & c);
 
 /** Closest point on segment [a, b] to p. */
 inline Vec3
@@ -426,31 +393,13 @@ OppositeAngleSum(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
 
 /** Circumcentre of the triangle (a, b, c), in its plane; the centroid for a
  * degenerate triangle (which has no circumcircle). */
-inline Vec3
-TriangleCircumcenter(const Vec3 & a, const Vec3 & b, const Vec3 & c)
-{
-  const Vec3   ab = b - a;
-  const Vec3   ac = c - a;
-  const Vec3   n = Cross(ab, ac);
-  const double n2 = SquaredNorm(n);
-  if (!(n2 > 0.0))
-  {
-    return TriangleCentroid(a, b, c);
-  }
-  return a + (Cross(n, ab) * SquaredNorm(ac) + Cross(ac, n) * SquaredNorm(ab)) * (1.0 / (2.0 * n2));
-}
+MeshExtraction_EXPORT Vec3
+TriangleCircumcenter(const Vec3 & a, const Vec3 & b, const Vec3 & c);
 
 /** Whether d, projected onto the plane of (a, b, c), lies strictly inside the
  * circumcircle of (a, b, c) (relative tolerance 1e-12 on the squared radius). */
-inline bool
-IsInsideCircumcircle(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
-{
-  const Vec3   n = TriangleUnitNormal(a, b, c);
-  const Vec3   center = TriangleCircumcenter(a, b, c);
-  const Vec3   dd = d - n * Dot(d - center, n);
-  const double r2 = SquaredNorm(a - center);
-  return SquaredNorm(dd - center) < r2 * (1.0 - 1e-12);
-}
+MeshExtraction_EXPORT bool
+IsInsideCircumcircle(const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d);
 
 // --- scale-space edge detection ---
 

@@ -18,10 +18,49 @@
 #include "itkMeshExtractionGaussianScaleSpace.h"
 #include "itkGaussianDerivativeOperator.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace itk
 {
 namespace MeshExtraction
 {
+std::vector<double>
+ScaleSpaceScales(double maximumScale, double minimumScale, unsigned int scalesPerOctave)
+{
+  std::vector<double> scales;
+  if (!(maximumScale > 0.0) || !(minimumScale > 0.0) || !std::isfinite(maximumScale) || !std::isfinite(minimumScale) ||
+      scalesPerOctave == 0)
+  {
+    return scales;
+  }
+  if (maximumScale <= minimumScale * (1.0 + 1e-9))
+  {
+    scales.push_back(maximumScale);
+    return scales;
+  }
+  const double       octaves = std::log2(maximumScale / minimumScale);
+  const unsigned int steps = std::max(1u, static_cast<unsigned int>(std::ceil(scalesPerOctave * octaves - 1e-9)));
+  scales.reserve(steps + 1);
+  for (unsigned int i = 0; i <= steps; ++i)
+  {
+    scales.push_back(maximumScale * std::pow(minimumScale / maximumScale, static_cast<double>(i) / steps));
+  }
+  scales.back() = minimumScale;
+  return scales;
+}
+
+double
+ParabolicPeakOffset(double below, double centre, double above, double h)
+{
+  const double curvature = below - 2.0 * centre + above;
+  if (!(curvature < 0.0))
+  {
+    return 0.0;
+  }
+  return std::clamp(0.5 * h * (below - above) / curvature, -0.5 * h, 0.5 * h);
+}
+
 std::vector<float>
 GaussianKernel(double sigma, double spacing, unsigned int order)
 {
@@ -47,8 +86,8 @@ GaussianKernel(double sigma, double spacing, unsigned int order)
   if (order == 1)
   {
     // On in[x] = x * spacing this must give exactly +1 (the truncated, clamped kernel
-    // gives 1 within a few per cent, with the sign of ITK's convention): a ramp's
-    // gradient is then exact.
+    // gives only about 1, with the sign of ITK's convention): a ramp's gradient is
+    // then exact.
     double slope = 0.0;
     for (unsigned int i = 0; i < n; ++i)
     {

@@ -27,5 +27,16 @@ ThreadNumberOfWorkUnits()
   thread_local unsigned int numberOfWorkUnits = 0;
   return numberOfWorkUnits;
 }
+
+ScopedNumberOfWorkUnits::ScopedNumberOfWorkUnits(unsigned int numberOfWorkUnits)
+    : m_Previous(ThreadNumberOfWorkUnits())
+{
+  ThreadNumberOfWorkUnits() = numberOfWorkUnits;
+}
+
+ScopedNumberOfWorkUnits::~ScopedNumberOfWorkUnits()
+{
+  ThreadNumberOfWorkUnits() = m_Previous;
+}
 } // namespace MeshExtraction
 } // namespace itk

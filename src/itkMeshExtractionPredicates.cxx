@@ -478,6 +478,76 @@ TrianglesIntersect(const Vec3 P[3], const Vec3 Q[3])
   return false;
 }
 
+namespace
+{
+/** Faces P and Q with the common edge (v, w) of P's sides beyond corner pi (P's
+ * corner pi is not shared): they overlap beyond the edge only if they are coplanar
+ * with their third vertices on the same side of it. */
+bool
+FacesWithCommonEdgeIntersect(const Vec3           P[3],
+                             const IdentifierType pid[3],
+                             unsigned int         pi,
+                             const Vec3           Q[3],
+                             const IdentifierType qid[3])
+{
+  const Vec3 & v = P[(pi + 1) % 3];
+  const Vec3 & w = P[(pi + 2) % 3];
+  const Vec3 & a = P[pi];
+  unsigned int qi = 0;
+  while (qid[qi] == pid[(pi + 1) % 3] || qid[qi] == pid[(pi + 2) % 3])
+  {
+    ++qi;
+  }
+  const Vec3 & c = Q[qi];
+  if (Orient3D(v, w, a, c) != 0)
+  {
+    return false;
+  }
+  Projection pr{};
+  if (!ChooseProjection(v, w, a, pr))
+  {
+    return false;
+  }
+  double pv[2];
+  double pw[2];
+  double pa[2];
+  double pc[2];
+  Project(v, pr, pv);
+  Project(w, pr, pw);
+  Project(a, pr, pa);
+  Project(c, pr, pc);
+  return Orient2D(pv, pw, pa) * Orient2D(pv, pw, pc) > 0;
+}
+
+/** Faces P = (v, a, b) and Q = (v, c, d) with the one common vertex v. A point other
+ * than v in both faces exists iff the far edge of one face meets the other face, or
+ * an edge leaving v runs into the other face: walking from v through a common
+ * point, the last common point lies on the boundary of one face away from v, i.e.
+ * on its far edge or on one of its edges leaving v. */
+bool
+FacesWithCommonVertexIntersect(const Vec3 & v, const Vec3 & a, const Vec3 & b, const Vec3 & c, const Vec3 & d)
+{
+  // Either face strictly on one side of the other's plane (but for v): only v is common.
+  const PlaneOrientation planeP(v, a, b);
+  const int              oc = planeP(c);
+  const int              od = planeP(d);
+  if (oc != 0 && oc == od)
+  {
+    return false;
+  }
+  const PlaneOrientation planeQ(v, c, d);
+  const int              oa = planeQ(a);
+  const int              ob = planeQ(b);
+  if (oa != 0 && oa == ob)
+  {
+    return false;
+  }
+  return SegmentIntersectsTriangle(a, b, v, c, d) || SegmentIntersectsTriangle(c, d, v, a, b) ||
+         EdgeEntersFaceAtSharedVertex(v, a, c, d) || EdgeEntersFaceAtSharedVertex(v, b, c, d) ||
+         EdgeEntersFaceAtSharedVertex(v, c, a, b) || EdgeEntersFaceAtSharedVertex(v, d, a, b);
+}
+} // namespace
+
 bool
 FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], const IdentifierType qid[3])
 {
@@ -504,75 +574,20 @@ FacesIntersect(const Vec3 P[3], const IdentifierType pid[3], const Vec3 Q[3], co
   }
   if (shared == 2)
   {
-    // Common edge (v, w); the faces overlap beyond it only if they are coplanar
-    // with their third vertices on the same side of the edge.
-    unsigned int pi = 0;
+    unsigned int pi = 0; // P's corner that is not shared
     while (sharedP[pi] >= 0)
     {
       ++pi;
     }
-    const Vec3 & v = P[(pi + 1) % 3];
-    const Vec3 & w = P[(pi + 2) % 3];
-    const Vec3 & a = P[pi];
-    unsigned int qi = 0;
-    while (qid[qi] == pid[(pi + 1) % 3] || qid[qi] == pid[(pi + 2) % 3])
-    {
-      ++qi;
-    }
-    const Vec3 & c = Q[qi];
-    if (Orient3D(v, w, a, c) != 0)
-    {
-      return false;
-    }
-    Projection pr{};
-    if (!ChooseProjection(v, w, a, pr))
-    {
-      return false;
-    }
-    double pv[2];
-    double pw[2];
-    double pa[2];
-    double pc[2];
-    Project(v, pr, pv);
-    Project(w, pr, pw);
-    Project(a, pr, pa);
-    Project(c, pr, pc);
-    return Orient2D(pv, pw, pa) * Orient2D(pv, pw, pc) > 0;
+    return FacesWithCommonEdgeIntersect(P, pid, pi, Q, qid);
   }
-  // One common vertex v: P = (v, a, b), Q = (v, c, d). A point other than v in
-  // both faces exists iff the far edge of one face meets the other face, or an
-  // edge leaving v runs into the other face: walking from v through a common
-  // point, the last common point lies on the boundary of one face away from v,
-  // i.e. on its far edge or on one of its edges leaving v.
-  unsigned int pi = 0;
+  unsigned int pi = 0; // P's shared corner
   while (sharedP[pi] < 0)
   {
     ++pi;
   }
   const unsigned int qi = static_cast<unsigned int>(sharedP[pi]);
-  const Vec3 &       v = P[pi];
-  const Vec3 &       a = P[(pi + 1) % 3];
-  const Vec3 &       b = P[(pi + 2) % 3];
-  const Vec3 &       c = Q[(qi + 1) % 3];
-  const Vec3 &       d = Q[(qi + 2) % 3];
-  // Either face strictly on one side of the other's plane (but for v): only v is common.
-  const PlaneOrientation planeP(v, a, b);
-  const int              oc = planeP(c);
-  const int              od = planeP(d);
-  if (oc != 0 && oc == od)
-  {
-    return false;
-  }
-  const PlaneOrientation planeQ(v, c, d);
-  const int              oa = planeQ(a);
-  const int              ob = planeQ(b);
-  if (oa != 0 && oa == ob)
-  {
-    return false;
-  }
-  return SegmentIntersectsTriangle(a, b, v, c, d) || SegmentIntersectsTriangle(c, d, v, a, b) ||
-         EdgeEntersFaceAtSharedVertex(v, a, c, d) || EdgeEntersFaceAtSharedVertex(v, b, c, d) ||
-         EdgeEntersFaceAtSharedVertex(v, c, a, b) || EdgeEntersFaceAtSharedVertex(v, d, a, b);
+  return FacesWithCommonVertexIntersect(P[pi], P[(pi + 1) % 3], P[(pi + 2) % 3], Q[(qi + 1) % 3], Q[(qi + 2) % 3]);
 }
 
 bool

@@ -18,8 +18,6 @@
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionParallel.h"
-#include "itkMeshExtractionPredicates.h"
-#include "itkMeshExtractionTriangleAABBTree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -79,14 +77,6 @@ PrintStatisticsJSON(std::ostream & os, const ValueStatistics & s)
   }
   os << "]}";
 }
-
-Vec3
-AnyPerpendicular(const Vec3 & n)
-{
-  const Vec3 axis = std::abs(n[0]) < 0.6 ? MakeVec3(1, 0, 0) : MakeVec3(0, 1, 0);
-  Vec3       u = Cross(n, axis);
-  return u * (1.0 / Norm(u));
-}
 } // namespace
 
 ValueStatistics
@@ -121,623 +111,273 @@ ComputeValueStatistics(std::vector<double> values, double lower, double upper, u
   return s;
 }
 
+
 namespace
 {
-/** The parity (0 or 1) of the crossings of the ray origin + t direction, t > 0, with
- * the triangles of `tree` that skip(g) does not exclude; -1 if it grazes an edge or a
- * vertex of one (IntersectRayTriangle's ambiguous hit). */
-template <typename TSkip>
-int
-RayCrossingParity(const IndexedTriangleMesh & mesh,
-                  const TriangleAABBTree &    tree,
-                  const Vec3 &                origin,
-                  const Vec3 &                direction,
-                  TSkip &&                    skip)
+/** Throws unless `reference` has the points and triangles of `mesh` by index. */
+void
+CheckSameConnectivity(const IndexedTriangleMesh & mesh, const IndexedTriangleMesh & reference)
 {
-  std::size_t crossings = 0;
-  bool        ambiguous = false;
-  tree.VisitRay(origin, direction, [&](std::uint32_t g) {
-    if (ambiguous || skip(g))
-    {
-      return;
-    }
-    const auto &         s = mesh.triangles[g];
-    const RayTriangleHit hit =
-      IntersectRayTriangle(origin, direction, mesh.points[s[0]], mesh.points[s[1]], mesh.points[s[2]], 0.0);
-    ambiguous = hit.ambiguous;
-    crossings += hit.hit ? 1 : 0;
-  });
-  return ambiguous ? -1 : static_cast<int>(crossings % 2);
-}
-} // namespace
-
-std::vector<int>
-ClassifyTriangleOrientation(const IndexedTriangleMesh & mesh, double degenerateQAreaTolerance)
-{
-  const std::size_t          n = mesh.triangles.size();
-  std::vector<int>           result(n, 0);
-  std::vector<std::uint32_t> valid;
-  valid.reserve(n);
-  for (std::uint32_t f = 0; f < n; ++f)
+  if (reference.points.size() != mesh.points.size() || reference.triangles != mesh.triangles)
   {
-    const auto & t = mesh.triangles[f];
-    if (MeasureTriangle(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]).qArea > degenerateQAreaTolerance)
-    {
-      valid.push_back(f);
-    }
+    itkGenericExceptionMacro("TriangleMeshQualityCalculator: the reference mesh must have the same connectivity as "
+                             "the mesh (it has "
+                             << reference.points.size() << " points and " << reference.triangles.size()
+                             << " triangles, the mesh " << mesh.points.size() << " and " << mesh.triangles.size()
+                             << ", or the triangles differ).");
   }
-  TriangleAABBTree tree;
-  tree.Build(mesh, &valid);
-  ParallelForBlocks(valid.size(), 1024, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      const std::uint32_t f = valid[i];
-      const auto &        t = mesh.triangles[f];
-      const Vec3 &        a = mesh.points[t[0]];
-      const Vec3 &        b = mesh.points[t[1]];
-      const Vec3 &        c = mesh.points[t[2]];
-      const Vec3          origin = TriangleCentroid(a, b, c);
-      const Vec3          normal = TriangleUnitNormal(a, b, c);
-      const Vec3          u = AnyPerpendicular(normal);
-      const Vec3          w = Cross(normal, u);
-      // Any direction into the open half-space of the normal tells the side the
-      // normal points to; retry with tilted rays when one grazes an edge.
-      for (unsigned int attempt = 0; attempt < 12; ++attempt)
-      {
-        Vec3 direction = normal;
-        if (attempt > 0)
-        {
-          const double angle = 2.399963229728653 * attempt; // golden angle
-          direction = normal + (u * std::cos(angle) + w * std::sin(angle)) * (0.15 + 0.05 * attempt);
-          direction *= 1.0 / Norm(direction);
-        }
-        const int parity = RayCrossingParity(mesh, tree, origin, direction, [f](std::uint32_t g) { return g == f; });
-        if (parity >= 0)
-        {
-          result[f] = parity == 0 ? 1 : -1;
-          break;
-        }
-      }
-    }
-  });
-  return result;
 }
 
-std::vector<std::uint32_t>
-ComponentRayVertices(const IndexedTriangleMesh & mesh, const MeshTopology & topology)
+/** MeasureTriangle for every triangle, on the work units. */
+void
+MeasureAllTriangles(const IndexedTriangleMesh & mesh, std::vector<TriangleMeasures> & m)
 {
-  std::vector<std::uint32_t> vertex(topology.numberOfComponents, std::numeric_limits<std::uint32_t>::max());
+  m.resize(mesh.triangles.size());
+  ParallelForBlocks(mesh.triangles.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t f = begin; f < end; ++f)
+    {
+      const auto & t = mesh.triangles[f];
+      m[f] = MeasureTriangle(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+    }
+  });
+}
+
+/** The shape statistics of the triangles (the q's and the angles, with their
+ * histograms), the share of q_angle < 0.3, the degenerate triangles and the area. */
+void
+SummariseTriangleShapes(const std::vector<TriangleMeasures> & m,
+                        double                                degenerateQAreaTolerance,
+                        TriangleMeshQualityReport &           r)
+{
+  const std::size_t   numberOfTriangles = m.size();
+  std::vector<double> qLength(numberOfTriangles);
+  std::vector<double> qAngle(numberOfTriangles);
+  std::vector<double> qArea(numberOfTriangles);
+  std::vector<double> minAngle(numberOfTriangles);
+  std::vector<double> maxAngle(numberOfTriangles);
+  std::size_t         below03 = 0;
+  for (std::size_t f = 0; f < numberOfTriangles; ++f)
+  {
+    qLength[f] = m[f].qLength;
+    qAngle[f] = m[f].qAngle;
+    qArea[f] = m[f].qArea;
+    minAngle[f] = m[f].minAngle * RadiansToDegrees;
+    maxAngle[f] = m[f].maxAngle * RadiansToDegrees;
+    below03 += m[f].qAngle < 0.3 ? 1 : 0;
+    r.degenerateTriangles += m[f].qArea <= degenerateQAreaTolerance ? 1 : 0;
+    r.totalArea += m[f].area;
+  }
+  r.fractionQAngleBelow03 = numberOfTriangles ? static_cast<double>(below03) / numberOfTriangles : 0.0;
+  r.qLength = ComputeValueStatistics(std::move(qLength));
+  r.qAngle = ComputeValueStatistics(std::move(qAngle));
+  r.qArea = ComputeValueStatistics(std::move(qArea));
+  r.minimumAngle = ComputeValueStatistics(std::move(minAngle), 0.0, 60.0, 12);
+  r.maximumAngle = ComputeValueStatistics(std::move(maxAngle), 60.0, 180.0, 12);
+}
+
+/** The statistics of the edge lengths, histogram on [0, longest edge]. */
+ValueStatistics
+EdgeLengthStatistics(const IndexedTriangleMesh & mesh, const MeshTopology & topo)
+{
+  std::vector<double> lengths(topo.edges.size());
+  double              longest = 0.0;
+  for (std::size_t e = 0; e < topo.edges.size(); ++e)
+  {
+    lengths[e] = Norm(mesh.points[topo.edges[e].a] - mesh.points[topo.edges[e].b]);
+    longest = std::max(longest, lengths[e]);
+  }
+  return ComputeValueStatistics(std::move(lengths), 0.0, longest > 0.0 ? longest : 1.0, 10);
+}
+
+/** Smoothness |2 pi - sum of incident angles| of the interior vertices (thesis
+ * section 3.3): their mean and number, and each vertex's value if asked for. */
+void
+SummariseSmoothness(const IndexedTriangleMesh &           mesh,
+                    const MeshTopology &                  topo,
+                    const std::vector<TriangleMeasures> & m,
+                    TriangleMeshQualityReport &           r,
+                    std::vector<double> *                 vertexSmoothness)
+{
+  std::vector<double> angleSum(mesh.points.size(), 0.0);
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
   {
-    const std::uint32_t c = topology.triangleComponent[f];
-    if (vertex[c] == std::numeric_limits<std::uint32_t>::max())
+    for (unsigned int k = 0; k < 3; ++k)
     {
-      vertex[c] = mesh.triangles[f][0];
+      angleSum[mesh.triangles[f][k]] += m[f].angle[k];
     }
   }
-  return vertex;
-}
-
-std::vector<std::int8_t>
-ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & topology)
-{
-  const std::size_t components = topology.numberOfComponents;
-  if (components < 2)
+  if (vertexSmoothness)
   {
-    return {};
+    vertexSmoothness->assign(mesh.points.size(), 0.0);
   }
-  std::vector<std::int8_t>         parity(components, -1);
-  const std::vector<std::uint32_t> vertex = ComponentRayVertices(mesh, topology);
-  std::vector<std::uint32_t>       proper;
-  proper.reserve(mesh.triangles.size());
-  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
+  double sum = 0.0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
   {
-    if (MeshFaceIsProper(mesh, f))
+    if (topo.vertexIsInterior[v])
     {
-      proper.push_back(f);
-    }
-  }
-  TriangleAABBTree tree;
-  tree.Build(mesh, &proper);
-  ParallelForBlocks(components, 64, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t c = begin; c < end; ++c)
-    {
-      if ((c < topology.componentBoundaryLoops.size() && topology.componentBoundaryLoops[c] > 0) ||
-          vertex[c] == std::numeric_limits<std::uint32_t>::max())
+      const double s = std::abs(2.0 * itk::Math::pi - angleSum[v]);
+      sum += s;
+      ++r.numberOfInteriorVertices;
+      if (vertexSmoothness)
       {
-        continue;
-      }
-      const Vec3 & origin = mesh.points[vertex[c]];
-      for (unsigned int attempt = 0; attempt < 12; ++attempt)
-      {
-        // Directions of no special alignment with the grid, turned by the golden angle.
-        const double angle = 0.61 + 2.399963229728653 * attempt;
-        const double z = 0.83 - 0.13 * attempt;
-        const double r = std::sqrt(1.0 - z * z);
-        Vec3         direction;
-        direction[0] = r * std::cos(angle);
-        direction[1] = r * std::sin(angle);
-        direction[2] = z;
-        const int p = RayCrossingParity(mesh, tree, origin, direction, [&topology, c](std::uint32_t g) {
-          return topology.triangleComponent[g] == c;
-        });
-        if (p >= 0)
-        {
-          parity[c] = static_cast<std::int8_t>(p);
-          break;
-        }
-      }
-    }
-  });
-  return parity;
-}
-
-std::vector<std::pair<std::uint32_t, std::uint32_t>>
-SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> & found)
-{
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (const auto & blockPairs : found)
-  {
-    pairs.insert(pairs.end(), blockPairs.begin(), blockPairs.end());
-  }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
-}
-
-bool
-MeshFaceIsProper(const IndexedTriangleMesh & mesh, std::uint32_t f)
-{
-  const auto & t = mesh.triangles[f];
-  return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] &&
-         !IsTriangleDegenerateExact(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
-}
-
-namespace
-{
-using FacePair = std::pair<std::uint32_t, std::uint32_t>;
-using FacePairBlocks = std::vector<std::vector<FacePair>>;
-
-/** The pairs of triangles whose boxes overlap in `tree` (the tree against itself, each
- * pair once, the first levels' node pairs shared among the threads), that `accept`
- * lets through and that intersect (FacesIntersect), sorted. accept(f, g, list)
- * may also keep the pair in `list`, one of `kept` (a list per block). */
-template <typename TAccept>
-std::vector<FacePair>
-IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh,
-                             const TriangleAABBTree &    tree,
-                             TAccept &&                  accept,
-                             FacePairBlocks &            kept)
-{
-  const std::vector<TriangleAABBTree::NodePair> starts = tree.SplitOverlappingPairs(4096);
-  constexpr std::size_t                         PairsPerBlock = 16;
-  const std::size_t                             numberOfBlocks = (starts.size() + PairsPerBlock - 1) / PairsPerBlock;
-  FacePairBlocks                                found(numberOfBlocks);
-  kept.resize(numberOfBlocks);
-  for (auto & block : kept)
-  {
-    block.clear(); // keeps its memory for the next search
-  }
-  ParallelForBlocks(starts.size(), PairsPerBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      tree.VisitOverlappingPairs(starts[i], [&](std::uint32_t f, std::uint32_t g) {
-        if (accept(f, g, kept[block]) && MeshFacesIntersect(mesh, f, g))
-        {
-          found[block].emplace_back(std::min(f, g), std::max(f, g));
-        }
-      });
-    }
-  });
-  return SortedPairs(found);
-}
-
-template <typename TAccept>
-std::vector<FacePair>
-IntersectingOverlappingPairs(const IndexedTriangleMesh & mesh, const TriangleAABBTree & tree, TAccept && accept)
-{
-  FacePairBlocks none;
-  return IntersectingOverlappingPairs(
-    mesh, tree, [&accept](std::uint32_t f, std::uint32_t g, std::vector<FacePair> &) { return accept(f, g); }, none);
-}
-
-/** The pairs of each face f of `queries` with the faces g of `tree` whose boxes
- * overlap box(f), that `accept` lets through and that intersect (FacesIntersect),
- * sorted; a pair of two queries (isQuery(g)) once, from the later one's query. */
-template <typename TBox, typename TIsQuery, typename TAccept>
-std::vector<FacePair>
-IntersectingQueryPairs(const IndexedTriangleMesh &        mesh,
-                       const TriangleAABBTree &           tree,
-                       const std::vector<std::uint32_t> & queries,
-                       std::size_t                        blockSize,
-                       TBox &&                            box,
-                       TIsQuery &&                        isQuery,
-                       TAccept &&                         accept)
-{
-  FacePairBlocks found((queries.size() + blockSize - 1) / blockSize);
-  ParallelForBlocks(queries.size(), blockSize, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      const std::uint32_t  f = queries[i];
-      const auto &         t = mesh.triangles[f];
-      const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
-      const IdentifierType pid[3] = { t[0], t[1], t[2] };
-      tree.VisitOverlapping(box(f), [&](std::uint32_t g) {
-        if (g == f || (g < f && isQuery(g)) || !accept(f, g))
-        {
-          return;
-        }
-        const auto &         u = mesh.triangles[g];
-        const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
-        const IdentifierType qid[3] = { u[0], u[1], u[2] };
-        if (FacesIntersect(P, pid, Q, qid))
-        {
-          found[block].emplace_back(std::min(f, g), std::max(f, g));
-        }
-      });
-    }
-  });
-  return SortedPairs(found);
-}
-
-/** The full search of FindSelfIntersections (every pair that `accept` lets through
- * and that intersects; `tree` holds boxes that contain the faces' own, `boxes`;
- * certified[v] as CertifiedFans), with a cache: see SelfIntersectionCache.
- * acceptApart(f, g) is `accept` for two faces without a common vertex. */
-template <typename TAccept, typename TAcceptApart>
-std::vector<FacePair>
-SearchWithCache(const IndexedTriangleMesh &       mesh,
-                const TriangleAABBTree &          tree,
-                const AxisAlignedBoxArray &       boxes,
-                const std::vector<std::uint8_t> & certified,
-                SelfIntersectionCache &           cache,
-                TAccept &&                        accept,
-                TAcceptApart &&                   acceptApart)
-{
-  const std::size_t n = mesh.triangles.size();
-  const std::size_t numberOfPoints = mesh.points.size();
-  // The faces that moved since the rebuild (NaN points count as moved).
-  std::vector<std::uint8_t> moved;
-  std::size_t               numberOfMoved = n;
-  if (n > 0 && cache.points.size() == numberOfPoints && cache.triangles.size() == n &&
-      cache.margin == cache.marginOfNearPairs)
-  {
-    const double              limit = 0.45 * cache.margin;
-    std::vector<std::uint8_t> far(numberOfPoints);
-    for (std::size_t v = 0; v < numberOfPoints; ++v)
-    {
-      far[v] = SquaredNorm(mesh.points[v] - cache.points[v]) < limit * limit ? 0 : 1;
-    }
-    moved.resize(n);
-    for (std::size_t f = 0; f < n; ++f)
-    {
-      const auto & t = mesh.triangles[f];
-      moved[f] = (t != cache.triangles[f] || far[t[0]] || far[t[1]] || far[t[2]]) ? 1 : 0;
-    }
-    numberOfMoved = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), std::uint8_t{ 1 }));
-  }
-  if (4 * numberOfMoved > n)
-  {
-    // Rebuild: the whole search, which also yields the near pairs (the tree's boxes
-    // contain the grown ones).
-    ++cache.numberOfRebuilds;
-    cache.marginOfNearPairs = cache.margin;
-    cache.points.assign(mesh.points.begin(), mesh.points.end());
-    cache.triangles.assign(mesh.triangles.begin(), mesh.triangles.end());
-    const double grow = cache.margin; // both boxes grown by half of it
-    auto         near = [&](std::uint32_t f, std::uint32_t g) {
-      const AxisAlignedBox & a = boxes[f];
-      const AxisAlignedBox & b = boxes[g];
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        if (a.lower[d] - grow > b.upper[d] || b.lower[d] - grow > a.upper[d])
-        {
-          return false;
-        }
-      }
-      return true;
-    };
-    // `accept`, with the common vertices looked up once for both questions.
-    return IntersectingOverlappingPairs(
-      mesh,
-      tree,
-      [&](std::uint32_t f, std::uint32_t g, std::vector<FacePair> & nearPairs) {
-        if (f >= n || g >= n)
-        {
-          return false;
-        }
-        const auto & t = mesh.triangles[f];
-        const auto & u = mesh.triangles[g];
-        bool         common = false;
-        for (std::uint32_t v : t)
-        {
-          if (v == u[0] || v == u[1] || v == u[2])
-          {
-            if (certified[v])
-            {
-              return false;
-            }
-            common = true;
-          }
-        }
-        if (!common && near(f, g))
-        {
-          nearPairs.emplace_back(f, g);
-        }
-        return acceptApart(f, g);
-      },
-      cache.nearPairs);
-  }
-  ++cache.numberOfIncrementalSearches;
-  auto intersect = [&](std::uint32_t f, std::uint32_t g) { return accept(f, g) && MeshFacesIntersect(mesh, f, g); };
-  // Near pairs of faces that did not move: the cache's blocks of them on the work
-  // units (the pairs are sorted below, so the blocks' order does not matter).
-  FacePairBlocks nearFound(cache.nearPairs.size());
-  ParallelForBlocks(cache.nearPairs.size(), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t b = begin; b < end; ++b)
-    {
-      for (const auto & p : cache.nearPairs[b])
-      {
-        if (!moved[p.first] && !moved[p.second] && acceptApart(p.first, p.second) &&
-            MeshFacesIntersect(mesh, p.first, p.second))
-        {
-          nearFound[b].emplace_back(std::min(p.first, p.second), std::max(p.first, p.second));
-        }
-      }
-    }
-  });
-  std::vector<FacePair> found;
-  for (const auto & block : nearFound)
-  {
-    found.insert(found.end(), block.begin(), block.end());
-  }
-  // Faces that did not move and meet at a vertex whose fan is not certified now.
-  std::vector<FacePair> corners; // (vertex, face)
-  for (std::uint32_t f = 0; f < n; ++f)
-  {
-    for (std::uint32_t v : mesh.triangles[f])
-    {
-      if (!moved[f] && v < numberOfPoints && !certified[v])
-      {
-        corners.emplace_back(v, f);
+        (*vertexSmoothness)[v] = s;
       }
     }
   }
-  std::sort(corners.begin(), corners.end());
-  for (std::size_t i = 0; i < corners.size();)
-  {
-    std::size_t j = i;
-    while (j < corners.size() && corners[j].first == corners[i].first)
-    {
-      ++j;
-    }
-    for (std::size_t a = i; a < j; ++a)
-    {
-      for (std::size_t b = a + 1; b < j; ++b)
-      {
-        const std::uint32_t f = corners[a].second;
-        const std::uint32_t g = corners[b].second;
-        if (f != g && intersect(f, g))
-        {
-          found.emplace_back(std::min(f, g), std::max(f, g));
-        }
-      }
-    }
-    i = j;
-  }
-  // Pairs with a face that moved: one query each (a pair of two such faces once).
-  std::vector<std::uint32_t> queries;
-  for (std::uint32_t f = 0; f < n; ++f)
-  {
-    if (moved[f])
-    {
-      queries.push_back(f);
-    }
-  }
-  FacePairBlocks blocks(2);
-  blocks[0] = IntersectingQueryPairs(
-    mesh,
-    tree,
-    queries,
-    512,
-    [&boxes](std::uint32_t f) { return boxes[f]; },
-    [&moved](std::uint32_t g) { return moved[g] != 0; },
-    accept);
-  blocks[1] = std::move(found);
-  auto pairs = SortedPairs(blocks);
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
+  r.meanSmoothness = r.numberOfInteriorVertices ? sum / r.numberOfInteriorVertices : 0.0;
 }
-/** Per point: 1 if its fan is certified (CertifyFan), from the faces at it in face
- * order. All 0 if a face refers to a point that is not there. */
-std::vector<std::uint8_t>
-CertifiedFans(const IndexedTriangleMesh & mesh)
+
+/** The valence histogram of the referenced vertices and their share of valence 6. */
+void
+SummariseValences(const MeshTopology & topo, std::size_t numberOfPoints, TriangleMeshQualityReport & r)
 {
-  const std::size_t             numberOfPoints = mesh.points.size();
-  std::vector<std::uint8_t>     certified(numberOfPoints, 0);
-  LargeBlockVector<std::size_t> start(numberOfPoints + 1, 0);
+  std::size_t valence6 = 0;
+  for (std::size_t v = 0; v < numberOfPoints; ++v)
+  {
+    const std::size_t d = topo.vertexEdgeOffsets[v + 1] - topo.vertexEdgeOffsets[v];
+    if (d == 0 && topo.vertexTriangleOffsets[v + 1] == topo.vertexTriangleOffsets[v])
+    {
+      continue;
+    }
+    if (r.valenceHistogram.size() <= d)
+    {
+      r.valenceHistogram.resize(d + 1, 0);
+    }
+    ++r.valenceHistogram[d];
+    valence6 += d == 6 ? 1 : 0;
+  }
+  r.fractionValence6 =
+    topo.numberOfReferencedVertices ? static_cast<double>(valence6) / topo.numberOfReferencedVertices : 0.0;
+}
+
+/** Sum over the components of (2 - chi - b) / 2, chi the component's Euler
+ * characteristic and b its boundary loops (for a manifold, oriented mesh). */
+std::int64_t
+Genus(const MeshTopology & topo, std::size_t numberOfPoints, std::size_t numberOfTriangles)
+{
+  std::vector<std::int64_t> chi(topo.numberOfComponents, 0);
+  for (std::size_t v = 0; v < numberOfPoints; ++v)
+  {
+    if (topo.vertexTriangleOffsets[v + 1] > topo.vertexTriangleOffsets[v])
+    {
+      ++chi[topo.triangleComponent[topo.vertexTriangles[topo.vertexTriangleOffsets[v]]]];
+    }
+  }
+  for (const auto & e : topo.edges)
+  {
+    --chi[topo.triangleComponent[topo.incidences[e.firstIncidence].triangle]];
+  }
+  for (std::size_t f = 0; f < numberOfTriangles; ++f)
+  {
+    ++chi[topo.triangleComponent[f]];
+  }
+  std::int64_t genus = 0;
+  for (std::size_t c = 0; c < topo.numberOfComponents; ++c)
+  {
+    genus += (2 - chi[c] - static_cast<std::int64_t>(topo.componentBoundaryLoops[c])) / 2;
+  }
+  return genus;
+}
+
+/** Integrity from the topology: non-manifold, boundary and inconsistent edges,
+ * non-manifold vertices, boundary loops, components, Euler characteristic and (for
+ * a manifold, consistently oriented mesh) the genus. */
+void
+SummariseTopology(const MeshTopology &        topo,
+                  std::size_t                 numberOfPoints,
+                  std::size_t                 numberOfTriangles,
+                  TriangleMeshQualityReport & r)
+{
+  r.nonManifoldEdges = static_cast<std::int64_t>(topo.numberOfNonManifoldEdges);
+  r.nonManifoldVertices = static_cast<std::int64_t>(topo.numberOfNonManifoldVertices);
+  r.boundaryEdges = static_cast<std::int64_t>(topo.numberOfBoundaryEdges);
+  r.boundaryLoops = static_cast<std::int64_t>(topo.numberOfBoundaryLoops);
+  r.inconsistentlyOrientedEdges = static_cast<std::int64_t>(topo.numberOfInconsistentEdges);
+  r.connectedComponents = static_cast<std::int64_t>(topo.numberOfComponents);
+  r.eulerCharacteristic = static_cast<std::int64_t>(topo.numberOfReferencedVertices) -
+                          static_cast<std::int64_t>(topo.edges.size()) + static_cast<std::int64_t>(numberOfTriangles);
+  if (r.IsManifold() && r.IsConsistentlyOriented() && numberOfTriangles > 0)
+  {
+    r.genus = Genus(topo, numberOfPoints, numberOfTriangles);
+  }
+}
+
+/** Signed volume by the divergence theorem, summed over the triangles in order. */
+double
+EnclosedVolume(const IndexedTriangleMesh & mesh)
+{
+  double volume = 0.0;
   for (const auto & t : mesh.triangles)
   {
-    for (std::uint32_t v : t)
-    {
-      if (v >= numberOfPoints)
-      {
-        return certified;
-      }
-      ++start[v + 1];
-    }
+    volume += Dot(mesh.points[t[0]], Cross(mesh.points[t[1]], mesh.points[t[2]])) / 6.0;
   }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  LargeBlockVector<FanCorner> corners(start.back());
+  return volume;
+}
+
+/** Non-degenerate triangles whose normal turned by 90 degrees or more against
+ * `reference` (same connectivity). */
+std::int64_t
+CountInvertedVersusReference(const IndexedTriangleMesh &           mesh,
+                             const IndexedTriangleMesh &           reference,
+                             const std::vector<TriangleMeasures> & m,
+                             double                                degenerateQAreaTolerance)
+{
+  std::int64_t inverted = 0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
   {
-    LargeBlockVector<std::size_t> cursor(start.begin(), start.end() - 1);
-    for (const auto & t : mesh.triangles)
+    const auto & t = mesh.triangles[f];
+    if (m[f].qArea <= degenerateQAreaTolerance)
     {
-      for (unsigned int j = 0; j < 3; ++j)
-      {
-        corners[cursor[t[j]]++] = FanCorner{ t[(j + 1) % 3], t[(j + 2) % 3] };
-      }
+      continue;
     }
+    const Vec3 n = TriangleNormal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+    const Vec3 nr = TriangleNormal(reference.points[t[0]], reference.points[t[1]], reference.points[t[2]]);
+    inverted += Dot(n, nr) <= 0.0 ? 1 : 0;
   }
-  ParallelForBlocks(numberOfPoints, 4096, [&](std::size_t begin, std::size_t end, std::size_t) {
-    FanScratch scratch;
-    for (std::size_t v = begin; v < end; ++v)
+  return inverted;
+}
+
+/** Non-degenerate triangles of a closed mesh that face into the enclosed volume, and
+ * those whose side the rays could not tell (ClassifyTriangleOrientation). */
+void
+CountInvertedVersusOutward(const IndexedTriangleMesh &           mesh,
+                           const std::vector<TriangleMeasures> & m,
+                           double                                degenerateQAreaTolerance,
+                           TriangleMeshQualityReport &           r)
+{
+  const std::vector<int> side = ClassifyTriangleOrientation(mesh, degenerateQAreaTolerance);
+  r.invertedTrianglesVersusOutward = 0;
+  r.undeterminedOrientationTriangles = 0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+  {
+    if (m[f].qArea <= degenerateQAreaTolerance)
     {
-      certified[v] = CertifyFan(mesh.points.data(),
-                                static_cast<std::uint32_t>(v),
-                                corners.data() + start[v],
-                                start[v + 1] - start[v],
-                                scratch)
-                       ? 1
-                       : 0;
+      continue;
     }
-  });
-  return certified;
+    r.invertedTrianglesVersusOutward += side[f] < 0 ? 1 : 0;
+    r.undeterminedOrientationTriangles += side[f] == 0 ? 1 : 0;
+  }
+}
+
+/** The self-intersecting pairs (FindSelfIntersections), the triangles in them, and
+ * the first few pairs for inspection. */
+void
+SummariseSelfIntersections(const IndexedTriangleMesh & mesh,
+                           std::size_t                 maximumReportedIntersections,
+                           TriangleMeshQualityReport & r)
+{
+  const auto        pairs = FindSelfIntersections(mesh);
+  std::vector<bool> involved(mesh.triangles.size(), false);
+  for (const auto & p : pairs)
+  {
+    involved[p.first] = true;
+    involved[p.second] = true;
+  }
+  r.selfIntersectingPairs = static_cast<std::int64_t>(pairs.size());
+  r.selfIntersectingTriangles = std::count(involved.begin(), involved.end(), true);
+  r.intersectingPairs.assign(pairs.begin(), pairs.begin() + std::min(pairs.size(), maximumReportedIntersections));
 }
 } // namespace
-
-bool
-MeshFacesIntersect(const IndexedTriangleMesh & mesh, std::uint32_t f, std::uint32_t g)
-{
-  const auto &         t = mesh.triangles[f];
-  const auto &         u = mesh.triangles[g];
-  const Vec3           P[3] = { mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]] };
-  const Vec3           Q[3] = { mesh.points[u[0]], mesh.points[u[1]], mesh.points[u[2]] };
-  const IdentifierType pid[3] = { t[0], t[1], t[2] };
-  const IdentifierType qid[3] = { u[0], u[1], u[2] };
-  return FacesIntersect(P, pid, Q, qid);
-}
-
-std::vector<std::pair<std::uint32_t, std::uint32_t>>
-FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> * queries)
-{
-  const std::size_t          n = mesh.triangles.size();
-  std::vector<std::uint32_t> valid;
-  std::vector<bool>          isValid(n, false);
-  valid.reserve(n);
-  for (std::uint32_t f = 0; f < n; ++f)
-  {
-    if (MeshFaceIsProper(mesh, f))
-    {
-      valid.push_back(f);
-      isValid[f] = true;
-    }
-  }
-  TriangleAABBTree tree;
-  tree.Build(mesh, &valid);
-  if (queries == nullptr)
-  {
-    // All pairs: the tree against itself, each pair of overlapping boxes once.
-    return IntersectingOverlappingPairs(mesh, tree, [](std::uint32_t, std::uint32_t) { return true; });
-  }
-  std::vector<std::uint32_t> asked;
-  if (queries != nullptr)
-  {
-    for (std::uint32_t f : *queries)
-    {
-      if (f < n && isValid[f])
-      {
-        asked.push_back(f);
-      }
-    }
-    std::sort(asked.begin(), asked.end());
-    asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
-  }
-  const std::vector<std::uint32_t> & probes = queries != nullptr ? asked : valid;
-  std::vector<bool>                  probed(queries != nullptr ? n : 0, false);
-  for (std::uint32_t f : asked)
-  {
-    probed[f] = true;
-  }
-  return IntersectingQueryPairs(
-    mesh,
-    tree,
-    probes,
-    2048,
-    [&mesh](std::uint32_t f) { return TriangleBox(mesh, f); },
-    [&](std::uint32_t g) { return queries == nullptr || probed[g]; },
-    [](std::uint32_t, std::uint32_t) { return true; });
-}
-
-std::vector<std::pair<std::uint32_t, std::uint32_t>>
-FindSelfIntersections(const IndexedTriangleMesh &        mesh,
-                      const std::vector<std::uint32_t> & queries,
-                      const TriangleAABBTree &           tree,
-                      SelfIntersectionCache *            cache)
-{
-  const std::size_t          n = mesh.triangles.size();
-  auto                       valid = [&mesh](std::uint32_t f) { return MeshFaceIsProper(mesh, f); };
-  std::vector<std::uint32_t> probes;
-  std::vector<bool>          probed(n, false);
-  // Which queries are proper faces (an exact test each) on the work units; then the
-  // probes, each once, in the queries' order.
-  std::vector<std::uint8_t> proper(queries.size());
-  ParallelForBlocks(queries.size(), 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      proper[i] = queries[i] < n && valid(queries[i]) ? 1 : 0;
-    }
-  });
-  for (std::size_t i = 0; i < queries.size(); ++i)
-  {
-    const std::uint32_t f = queries[i];
-    if (proper[i] && !probed[f])
-    {
-      probed[f] = true;
-      probes.push_back(f);
-    }
-  }
-  std::sort(probes.begin(), probes.end());
-  if (4 * probes.size() > n)
-  {
-    // Many probes (a sweep of swaps or moves over the whole mesh): the tree against
-    // itself visits each overlapping pair once, cheaper than one query per probe.
-    // The faces' own boxes (the tree's may be larger) and validity, once per face
-    // instead of once per pair.
-    AxisAlignedBoxArray       boxes(n);
-    std::vector<std::uint8_t> usable(n);
-    ParallelForBlocks(n, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t f = begin; f < end; ++f)
-      {
-        boxes[f] = TriangleBox(mesh, static_cast<std::uint32_t>(f));
-        usable[f] = probed[f] || valid(static_cast<std::uint32_t>(f));
-      }
-    });
-    // Vertices whose fan is certified (CertifyFan): two faces that meet at one have no
-    // other common point, or only their common edge, so they need no test. Nearly all
-    // the pairs the tree yields are faces with a common vertex (99.7 % on a relaxed
-    // sphere), and nearly every vertex of a valid mesh is certified.
-    const std::vector<std::uint8_t> certified = CertifiedFans(mesh);
-    auto                            meetAtCertifiedVertex = [&](std::uint32_t f, std::uint32_t g) {
-      const auto & t = mesh.triangles[f];
-      const auto & u = mesh.triangles[g];
-      for (unsigned int i = 0; i < 3; ++i)
-      {
-        if ((t[i] == u[0] || t[i] == u[1] || t[i] == u[2]) && certified[t[i]])
-        {
-          return true;
-        }
-      }
-      return false;
-    };
-    auto acceptApart = [&](std::uint32_t f, std::uint32_t g) {
-      return boxes[f].Overlaps(boxes[g]) && (probed[f] || probed[g]) && usable[f] && usable[g];
-    };
-    auto accept = [&](std::uint32_t f, std::uint32_t g) {
-      // The common-vertex test first: it turns away nearly every pair.
-      return f < n && g < n && !meetAtCertifiedVertex(f, g) && acceptApart(f, g);
-    };
-    return cache != nullptr ? SearchWithCache(mesh, tree, boxes, certified, *cache, accept, acceptApart)
-                            : IntersectingOverlappingPairs(mesh, tree, accept);
-  }
-  return IntersectingQueryPairs(
-    mesh,
-    tree,
-    probes,
-    2048,
-    [&mesh](std::uint32_t f) { return TriangleBox(mesh, f); },
-    [&probed](std::uint32_t g) { return probed[g]; },
-    [&](std::uint32_t f, std::uint32_t g) { return TriangleBox(mesh, g).Overlaps(TriangleBox(mesh, f)) && valid(g); });
-}
 
 TriangleMeshQualityReport
 AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
@@ -751,204 +391,42 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
   r.numberOfPoints = mesh.points.size();
   r.numberOfTriangles = numberOfTriangles;
   r.numberOfSplitQuads = mesh.numberOfSplitQuads;
-
   if (reference != nullptr)
   {
-    if (reference->points.size() != mesh.points.size() || reference->triangles != mesh.triangles)
-    {
-      itkGenericExceptionMacro("TriangleMeshQualityCalculator: the reference mesh must have the same connectivity as "
-                               "the mesh (it has "
-                               << reference->points.size() << " points and " << reference->triangles.size()
-                               << " triangles, the mesh " << mesh.points.size() << " and " << numberOfTriangles
-                               << ", or the triangles differ).");
-    }
+    CheckSameConnectivity(mesh, *reference);
   }
+  const double tolerance = options.degenerateQAreaTolerance;
 
-  // Per-triangle measures.
+  // Per-triangle measures, then their statistics and histograms.
   std::vector<TriangleMeasures>   localMeasures;
   std::vector<TriangleMeasures> & m = measuresOut ? *measuresOut : localMeasures;
-  m.resize(numberOfTriangles);
-  ParallelForBlocks(numberOfTriangles, 8192, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t f = begin; f < end; ++f)
-    {
-      const auto & t = mesh.triangles[f];
-      m[f] = MeasureTriangle(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
-    }
-  });
-
+  MeasureAllTriangles(mesh, m);
   const MeshTopology topo = BuildMeshTopology(mesh);
   r.numberOfEdges = topo.edges.size();
   r.numberOfReferencedPoints = topo.numberOfReferencedVertices;
   r.unreferencedPoints = static_cast<std::int64_t>(mesh.points.size() - topo.numberOfReferencedVertices);
+  SummariseTriangleShapes(m, tolerance, r);
+  r.edgeLength = EdgeLengthStatistics(mesh, topo);
 
-  {
-    std::vector<double> qLength(numberOfTriangles);
-    std::vector<double> qAngle(numberOfTriangles);
-    std::vector<double> qArea(numberOfTriangles);
-    std::vector<double> minAngle(numberOfTriangles);
-    std::vector<double> maxAngle(numberOfTriangles);
-    std::size_t         below03 = 0;
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      qLength[f] = m[f].qLength;
-      qAngle[f] = m[f].qAngle;
-      qArea[f] = m[f].qArea;
-      minAngle[f] = m[f].minAngle * RadiansToDegrees;
-      maxAngle[f] = m[f].maxAngle * RadiansToDegrees;
-      below03 += m[f].qAngle < 0.3 ? 1 : 0;
-      r.degenerateTriangles += m[f].qArea <= options.degenerateQAreaTolerance ? 1 : 0;
-      r.totalArea += m[f].area;
-    }
-    r.fractionQAngleBelow03 = numberOfTriangles ? static_cast<double>(below03) / numberOfTriangles : 0.0;
-    r.qLength = ComputeValueStatistics(std::move(qLength));
-    r.qAngle = ComputeValueStatistics(std::move(qAngle));
-    r.qArea = ComputeValueStatistics(std::move(qArea));
-    r.minimumAngle = ComputeValueStatistics(std::move(minAngle), 0.0, 60.0, 12);
-    r.maximumAngle = ComputeValueStatistics(std::move(maxAngle), 60.0, 180.0, 12);
-  }
-  {
-    std::vector<double> lengths(topo.edges.size());
-    double              longest = 0.0;
-    for (std::size_t e = 0; e < topo.edges.size(); ++e)
-    {
-      lengths[e] = Norm(mesh.points[topo.edges[e].a] - mesh.points[topo.edges[e].b]);
-      longest = std::max(longest, lengths[e]);
-    }
-    r.edgeLength = ComputeValueStatistics(std::move(lengths), 0.0, longest > 0.0 ? longest : 1.0, 10);
-  }
+  // Vertices.
+  SummariseSmoothness(mesh, topo, m, r, vertexSmoothness);
+  SummariseValences(topo, mesh.points.size(), r);
 
-  // Vertices: smoothness |2 pi - sum of incident angles| and valence.
-  {
-    std::vector<double> angleSum(mesh.points.size(), 0.0);
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        angleSum[mesh.triangles[f][k]] += m[f].angle[k];
-      }
-    }
-    if (vertexSmoothness)
-    {
-      vertexSmoothness->assign(mesh.points.size(), 0.0);
-    }
-    double sum = 0.0;
-    for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    {
-      if (topo.vertexIsInterior[v])
-      {
-        const double s = std::abs(2.0 * itk::Math::pi - angleSum[v]);
-        sum += s;
-        ++r.numberOfInteriorVertices;
-        if (vertexSmoothness)
-        {
-          (*vertexSmoothness)[v] = s;
-        }
-      }
-    }
-    r.meanSmoothness = r.numberOfInteriorVertices ? sum / r.numberOfInteriorVertices : 0.0;
-    std::size_t valence6 = 0;
-    for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    {
-      const std::size_t d = topo.vertexEdgeOffsets[v + 1] - topo.vertexEdgeOffsets[v];
-      if (d == 0 && topo.vertexTriangleOffsets[v + 1] == topo.vertexTriangleOffsets[v])
-      {
-        continue;
-      }
-      if (r.valenceHistogram.size() <= d)
-      {
-        r.valenceHistogram.resize(d + 1, 0);
-      }
-      ++r.valenceHistogram[d];
-      valence6 += d == 6 ? 1 : 0;
-    }
-    r.fractionValence6 =
-      topo.numberOfReferencedVertices ? static_cast<double>(valence6) / topo.numberOfReferencedVertices : 0.0;
-  }
-
-  // Topology.
-  r.nonManifoldEdges = static_cast<std::int64_t>(topo.numberOfNonManifoldEdges);
-  r.nonManifoldVertices = static_cast<std::int64_t>(topo.numberOfNonManifoldVertices);
-  r.boundaryEdges = static_cast<std::int64_t>(topo.numberOfBoundaryEdges);
-  r.boundaryLoops = static_cast<std::int64_t>(topo.numberOfBoundaryLoops);
-  r.inconsistentlyOrientedEdges = static_cast<std::int64_t>(topo.numberOfInconsistentEdges);
-  r.connectedComponents = static_cast<std::int64_t>(topo.numberOfComponents);
-  r.eulerCharacteristic = static_cast<std::int64_t>(topo.numberOfReferencedVertices) -
-                          static_cast<std::int64_t>(topo.edges.size()) + static_cast<std::int64_t>(numberOfTriangles);
-  if (r.IsManifold() && r.IsConsistentlyOriented() && numberOfTriangles > 0)
-  {
-    std::vector<std::int64_t> chi(topo.numberOfComponents, 0);
-    for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    {
-      if (topo.vertexTriangleOffsets[v + 1] > topo.vertexTriangleOffsets[v])
-      {
-        ++chi[topo.triangleComponent[topo.vertexTriangles[topo.vertexTriangleOffsets[v]]]];
-      }
-    }
-    for (const auto & e : topo.edges)
-    {
-      --chi[topo.triangleComponent[topo.incidences[e.firstIncidence].triangle]];
-    }
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      ++chi[topo.triangleComponent[f]];
-    }
-    r.genus = 0;
-    for (std::size_t c = 0; c < topo.numberOfComponents; ++c)
-    {
-      r.genus += (2 - chi[c] - static_cast<std::int64_t>(topo.componentBoundaryLoops[c])) / 2;
-    }
-  }
-
-  // Volume (divergence theorem).
-  for (const auto & t : mesh.triangles)
-  {
-    r.enclosedVolume += Dot(mesh.points[t[0]], Cross(mesh.points[t[1]], mesh.points[t[2]])) / 6.0;
-  }
-
-  // Inversions.
+  // Integrity: edges, components, Euler characteristic; volume; orientation;
+  // self-intersections.
+  SummariseTopology(topo, mesh.points.size(), numberOfTriangles, r);
+  r.enclosedVolume = EnclosedVolume(mesh);
   if (reference != nullptr)
   {
-    r.invertedTrianglesVersusReference = 0;
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      const auto & t = mesh.triangles[f];
-      if (m[f].qArea <= options.degenerateQAreaTolerance)
-      {
-        continue;
-      }
-      const Vec3 n = TriangleNormal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
-      const Vec3 nr = TriangleNormal(reference->points[t[0]], reference->points[t[1]], reference->points[t[2]]);
-      r.invertedTrianglesVersusReference += Dot(n, nr) <= 0.0 ? 1 : 0;
-    }
+    r.invertedTrianglesVersusReference = CountInvertedVersusReference(mesh, *reference, m, tolerance);
   }
   if (options.computeOutwardOrientation && r.IsClosed())
   {
-    const std::vector<int> side = ClassifyTriangleOrientation(mesh, options.degenerateQAreaTolerance);
-    r.invertedTrianglesVersusOutward = 0;
-    r.undeterminedOrientationTriangles = 0;
-    for (std::size_t f = 0; f < numberOfTriangles; ++f)
-    {
-      if (m[f].qArea <= options.degenerateQAreaTolerance)
-      {
-        continue;
-      }
-      r.invertedTrianglesVersusOutward += side[f] < 0 ? 1 : 0;
-      r.undeterminedOrientationTriangles += side[f] == 0 ? 1 : 0;
-    }
+    CountInvertedVersusOutward(mesh, m, tolerance, r);
   }
   if (options.computeSelfIntersections)
   {
-    const auto        pairs = FindSelfIntersections(mesh);
-    std::vector<bool> involved(numberOfTriangles, false);
-    for (const auto & p : pairs)
-    {
-      involved[p.first] = true;
-      involved[p.second] = true;
-    }
-    r.selfIntersectingPairs = static_cast<std::int64_t>(pairs.size());
-    r.selfIntersectingTriangles = std::count(involved.begin(), involved.end(), true);
-    r.intersectingPairs.assign(pairs.begin(),
-                               pairs.begin() + std::min(pairs.size(), options.maximumReportedIntersections));
+    SummariseSelfIntersections(mesh, options.maximumReportedIntersections, r);
   }
   return r;
 }

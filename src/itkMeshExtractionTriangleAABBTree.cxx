@@ -29,8 +29,8 @@ namespace
 {
 /** Sort (code, slot) pairs by code, then slot: LSD radix sort on 16-bit digits of the
  * code (a digit that every key shares is skipped) over slots in increasing order, so
- * the stable passes leave equal codes in slot order, as std::sort of the pairs does.
- * About 4x faster than std::sort for a few hundred thousand keys. */
+ * the stable passes leave equal codes in slot order, as std::sort of the pairs does,
+ * in linear time. */
 void
 SortKeys(LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> & keys)
 {
@@ -67,6 +67,90 @@ SortKeys(LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> & keys)
     keys.swap(buffer);
   }
 }
+
+Vec3
+BoxCentre(const AxisAlignedBox & box)
+{
+  Vec3 c;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    c[d] = 0.5 * (box.lower[d] + box.upper[d]);
+  }
+  return c;
+}
+
+/** The low 21 bits of x spread to every third bit (bit i to bit 3 i). */
+std::uint64_t
+SpreadBits(std::uint64_t x)
+{
+  x &= 0x1fffff;
+  x = (x | (x << 32)) & 0x1f00000000ffffULL;
+  x = (x | (x << 16)) & 0x1f0000ff0000ffULL;
+  x = (x | (x << 8)) & 0x100f00f00f00f00fULL;
+  x = (x | (x << 4)) & 0x10c30c30c30c30c3ULL;
+  x = (x | (x << 2)) & 0x1249249249249249ULL;
+  return x;
+}
+
+/** The 63-bit Morton (Z-order) codes of the centres of the n slots' boxes, boxOf(i),
+ * quantised to 21 bits per axis over the centres' bounds, paired with their slots and
+ * sorted (SortKeys). */
+template <typename TBoxOf>
+LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>>
+SortedMortonKeys(std::size_t n, TBoxOf && boxOf)
+{
+  AxisAlignedBox centreBounds;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    centreBounds.Add(BoxCentre(boxOf(i)));
+  }
+  LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3    centre = BoxCentre(boxOf(i));
+    std::uint64_t code = 0;
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      const double extent = centreBounds.upper[d] - centreBounds.lower[d];
+      const double t = extent > 0.0 ? (centre[d] - centreBounds.lower[d]) / extent : 0.0;
+      const auto   q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0);
+      code |= SpreadBits(q) << d;
+    }
+    keys[i] = { code, static_cast<std::uint32_t>(i) };
+  }
+  SortKeys(keys);
+  return keys;
+}
+
+/** Where the sorted keys [begin, end) split: where the highest bit in which their
+ * codes differ changes (the codes share the bits above it, and those with it clear
+ * come first), so that each half is one octree cell. Past depth 48, or among equal
+ * codes, in the middle: the depth, and so the traversal stacks of the queries, stay
+ * below 48 + log2(n) < 128. */
+std::uint32_t
+SplitPosition(const LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> & keys,
+              std::uint32_t                                                     begin,
+              std::uint32_t                                                     end,
+              std::uint32_t                                                     depth)
+{
+  const std::uint64_t firstCode = keys[begin].first;
+  const std::uint64_t lastCode = keys[end - 1].first;
+  if (firstCode == lastCode || depth >= 48)
+  {
+    return begin + (end - begin) / 2;
+  }
+  const std::uint64_t differ = firstCode ^ lastCode;
+  unsigned int        bit = 63;
+  while (((differ >> bit) & 1u) == 0)
+  {
+    --bit;
+  }
+  const auto split = std::partition_point(
+    keys.begin() + begin, keys.begin() + end, [bit](const std::pair<std::uint64_t, std::uint32_t> & k) {
+      return ((k.first >> bit) & 1u) == 0;
+    });
+  return static_cast<std::uint32_t>(split - keys.begin());
+}
 } // namespace
 
 void
@@ -93,7 +177,7 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
     return;
   }
   // The slots' boxes, in their final (sorted) order at the end; until then, read
-  // where they are (no copy: each is 48 bytes, a few hundred thousand of them).
+  // where they are (given boxes are not copied twice).
   AxisAlignedBoxArray computedBoxes(givenBoxes ? 0 : n);
   for (std::size_t i = 0; i < computedBoxes.size(); ++i)
   {
@@ -102,50 +186,28 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
   auto boxOf = [&](std::size_t i) -> const AxisAlignedBox & {
     return givenBoxes ? (*givenBoxes)[m_Triangles[i]] : computedBoxes[i];
   };
-  auto centreOf = [&](std::size_t i) {
-    const AxisAlignedBox & box = boxOf(i);
-    Vec3                   c;
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      c[d] = 0.5 * (box.lower[d] + box.upper[d]);
-    }
-    return c;
-  };
   // Order the slots along a Morton (Z-order) curve of the box centres, then split
   // every range where the highest differing bit of its codes changes (Karras' linear
   // BVH): each half is one octree cell, so boxes stay tight (splitting in the middle
-  // of the range instead lets a node span two distant cells, and made nearest-point
-  // queries three times slower). The 63-bit keys are radix sorted (SortKeys).
-  AxisAlignedBox centreBounds;
+  // of the range instead lets a node span two distant cells, which slows the
+  // nearest-point queries down).
+  const MortonKeys keys = SortedMortonKeys(n, boxOf);
+  this->BuildNodes(keys);
+  LargeBlockVector<std::uint32_t> triangles(n);
+  AxisAlignedBoxArray             sortedBoxes(n);
   for (std::size_t i = 0; i < n; ++i)
   {
-    centreBounds.Add(centreOf(i));
+    triangles[i] = m_Triangles[keys[i].second];
+    sortedBoxes[i] = boxOf(keys[i].second);
   }
-  auto spread = [](std::uint64_t x) {
-    x &= 0x1fffff;
-    x = (x | (x << 32)) & 0x1f00000000ffffULL;
-    x = (x | (x << 16)) & 0x1f0000ff0000ffULL;
-    x = (x | (x << 8)) & 0x100f00f00f00f00fULL;
-    x = (x | (x << 4)) & 0x10c30c30c30c30c3ULL;
-    x = (x | (x << 2)) & 0x1249249249249249ULL;
-    return x;
-  };
-  LargeBlockVector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Vec3    centre = centreOf(i);
-    std::uint64_t code = 0;
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      const double extent = centreBounds.upper[d] - centreBounds.lower[d];
-      const double t = extent > 0.0 ? (centre[d] - centreBounds.lower[d]) / extent : 0.0;
-      const auto   q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0);
-      code |= spread(q) << d;
-    }
-    keys[i] = { code, static_cast<std::uint32_t>(i) };
-  }
-  SortKeys(keys);
+  m_Triangles.swap(triangles);
+  m_Boxes.swap(sortedBoxes);
+  this->FitNodeBoxes();
+}
 
+void
+TriangleAABBTree::BuildNodes(const MortonKeys & keys)
+{
   constexpr std::uint32_t LeafSize = 16;
   struct Task
   {
@@ -154,6 +216,7 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
     std::uint32_t end;
     std::uint32_t depth;
   };
+  const std::size_t n = keys.size();
   m_Nodes.reserve(2 * (n / LeafSize + 1));
   m_Nodes.emplace_back();
   std::vector<Task> tasks;
@@ -169,28 +232,8 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
       m_Nodes[task.node].count = count;
       continue;
     }
-    std::uint32_t       middle = task.begin + count / 2;
-    const std::uint64_t firstCode = keys[task.begin].first;
-    const std::uint64_t lastCode = keys[task.end - 1].first;
-    // Past depth 48 (or among equal codes) split in the middle: the depth, and so the
-    // traversal stacks of the queries, stay below 48 + log2(n) < 128.
-    if (firstCode != lastCode && task.depth < 48)
-    {
-      const std::uint64_t differ = firstCode ^ lastCode;
-      unsigned int        bit = 63;
-      while (((differ >> bit) & 1u) == 0)
-      {
-        --bit;
-      }
-      // The codes of the range share the bits above `bit`, and are sorted: those
-      // with `bit` clear come first.
-      const auto split = std::partition_point(
-        keys.begin() + task.begin, keys.begin() + task.end, [bit](const std::pair<std::uint64_t, std::uint32_t> & k) {
-          return ((k.first >> bit) & 1u) == 0;
-        });
-      middle = static_cast<std::uint32_t>(split - keys.begin());
-    }
-    const auto left = static_cast<std::uint32_t>(m_Nodes.size());
+    const std::uint32_t middle = SplitPosition(keys, task.begin, task.end, task.depth);
+    const auto          left = static_cast<std::uint32_t>(m_Nodes.size());
     m_Nodes.emplace_back();
     m_Nodes.emplace_back();
     m_Nodes[task.node].first = left;
@@ -198,16 +241,31 @@ TriangleAABBTree::Build(const IndexedTriangleMesh &        mesh,
     tasks.push_back({ left, task.begin, middle, task.depth + 1 });
     tasks.push_back({ left + 1, middle, task.end, task.depth + 1 });
   }
-  LargeBlockVector<std::uint32_t> triangles(n);
-  AxisAlignedBoxArray             sortedBoxes(n);
-  for (std::size_t i = 0; i < n; ++i)
+}
+
+std::vector<TriangleAABBTree::NodePair>
+TriangleAABBTree::SplitOverlappingPairs(std::size_t minimumNumberOfPairs) const
+{
+  std::vector<NodePair> pairs;
+  if (m_Nodes.empty())
   {
-    triangles[i] = m_Triangles[keys[i].second];
-    sortedBoxes[i] = boxOf(keys[i].second);
+    return pairs;
   }
-  m_Triangles.swap(triangles);
-  m_Boxes.swap(sortedBoxes);
-  this->FitNodeBoxes();
+  pairs.emplace_back(0, 0);
+  for (;;)
+  {
+    std::vector<NodePair> next;
+    bool                  split = false;
+    for (const auto & p : pairs)
+    {
+      split = this->SplitPair(p, next) || split;
+    }
+    pairs.swap(next);
+    if (!split || pairs.size() >= minimumNumberOfPairs)
+    {
+      return pairs;
+    }
+  }
 }
 
 void
