@@ -75,7 +75,10 @@ def _parser():
         help="options of `meshextraction quality` (e.g. '--no-self-intersections' for very large meshes)",
     )
     run.add_argument(
-        "--task-threads", type=_positive, default=1, help="threads of the tool per case (extract --threads) (default: 1)"
+        "--task-threads",
+        type=_positive,
+        default=1,
+        help="threads of the tool per case (extract --threads) (default: 1)",
     )
     run.add_argument("--mesh-format", default="vtk", choices=("vtk", "obj", "off", "gii", "byu"), help="(default: vtk)")
     run.add_argument(

@@ -155,7 +155,9 @@ def _case(entry, base, where):
 def _read_csv(path):
     with open(path, newline="", encoding="utf-8") as stream:
         rows = list(csv.DictReader(row for row in stream if row.strip() and not row.lstrip().startswith("#")))
-    return [({k.strip(): v for k, v in row.items() if k is not None}, f"{path}: row {i + 2}") for i, row in enumerate(rows)]
+    return [
+        ({k.strip(): v for k, v in row.items() if k is not None}, f"{path}: row {i + 2}") for i, row in enumerate(rows)
+    ]
 
 
 def _read_json(path):
@@ -169,7 +171,7 @@ def _read_json(path):
         defaults = document.get("defaults", {})
         document = document.get("cases")
     if not isinstance(document, list) or not all(isinstance(e, dict) for e in document):
-        raise ManifestError(f"{path}: expected a list of cases or {{\"defaults\": {{...}}, \"cases\": [...]}}")
+        raise ManifestError(f'{path}: expected a list of cases or {{"defaults": {{...}}, "cases": [...]}}')
     return [({**defaults, **entry}, f"{path}: case {i + 1}") for i, entry in enumerate(document)]
 
 

@@ -248,7 +248,10 @@ def _totals_table(totals):
     failed = f'<span class="bad">{totals["failed"]}</span>' if totals["failed"] else "0"
     lines = [
         ("cases", totals["cases"]),
-        ("succeeded", f'{totals["succeeded"]} ({totals["reused"]} kept from earlier runs, {totals["computed"]} computed)'),
+        (
+            "succeeded",
+            f'{totals["succeeded"]} ({totals["reused"]} kept from earlier runs, {totals["computed"]} computed)',
+        ),
         ("failed", failed),
         ("retried (a worker died or the task raised)", totals["retried"]),
         ("not run (interrupted)", totals["not_run"]),
@@ -278,11 +281,15 @@ def _measure_cells(row):
     )
 
 
-_MEASURE_HEADER = "<th>triangles</th><th>mean q_area</th><th>mean q_angle</th><th>min q_angle</th><th>% q_angle &lt; 0.3</th>"
+_MEASURE_HEADER = (
+    "<th>triangles</th><th>mean q_area</th><th>mean q_angle</th><th>min q_angle</th><th>% q_angle &lt; 0.3</th>"
+)
 
 
 def _worst_table(rows, records, count=10):
-    ok = sorted((r for r in rows if r["status"] == "ok" and r.get("q_angle_min") is not None), key=lambda r: r["q_angle_min"])
+    ok = sorted(
+        (r for r in rows if r["status"] == "ok" and r.get("q_angle_min") is not None), key=lambda r: r["q_angle_min"]
+    )
     if not ok:
         return "<p>No successful case.</p>"
     body = "".join(
@@ -290,9 +297,7 @@ def _worst_table(rows, records, count=10):
         f'<td class="l">{_links(r["case"], records.get(r["case"]))}</td></tr>'
         for r in ok[:count]
     )
-    return (
-        f'<table><tr><th class="l">case</th>{_MEASURE_HEADER}<th class="l">files</th></tr>{body}</table>'
-    )
+    return f'<table><tr><th class="l">case</th>{_MEASURE_HEADER}<th class="l">files</th></tr>{body}</table>'
 
 
 def _failure_table(rows, records):
@@ -335,7 +340,9 @@ def render(title, totals, rows, records):
         _case_histogram(ok, "q_area_mean", "mean q_area per case", "mean q_area"),
         _case_histogram(ok, "q_angle_mean", "mean q_angle per case", "mean q_angle"),
         _case_histogram(ok, "q_angle_min", "smallest q_angle per case", "min q_angle"),
-        _case_histogram(ok, "q_angle_below_0_3_percent", "share of slivers per case", "% of triangles with q_angle < 0.3"),
+        _case_histogram(
+            ok, "q_angle_below_0_3_percent", "share of slivers per case", "% of triangles with q_angle < 0.3"
+        ),
     ]
     charts_cost = [
         _case_histogram(computed, "wall_seconds", "time per case (this run)", "seconds"),

@@ -76,8 +76,11 @@ def dask_client(args):
     import distributed
 
     # Ship this package's code with each task, so the workers of an existing cluster need
-    # only Dask, not this package on their Python path.
+    # only Dask, not this package on their Python path. Dask pickles a function by value only
+    # when its own module is registered, so the task's module is registered besides the
+    # package (whose registration covers the modules the task uses).
     cloudpickle.register_pickle_by_value(importlib.import_module(__package__))
+    cloudpickle.register_pickle_by_value(task)
     cluster = None
     if args.scheduler or args.scheduler_file:
         client = distributed.Client(args.scheduler, scheduler_file=args.scheduler_file, timeout="60s")

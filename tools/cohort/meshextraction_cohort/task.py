@@ -48,7 +48,9 @@ def _helpers():
         setpriv, gnu_time = shutil.which("setpriv"), shutil.which("time")
         death = [setpriv, "--pdeathsig", "KILL", "--"] if setpriv else []
         _probed["death"] = death if death and _works(death + ["true"]) else []
-        _probed["time"] = gnu_time if gnu_time and _works([gnu_time, "-f", _TIME_FORMAT, "-o", os.devnull, "true"]) else None
+        _probed["time"] = (
+            gnu_time if gnu_time and _works([gnu_time, "-f", _TIME_FORMAT, "-o", os.devnull, "true"]) else None
+        )
     return _probed["death"], _probed["time"]
 
 
@@ -274,7 +276,9 @@ def run_case(job):
         "steps": steps,
         "surfaces": surfaces,
     }
-    planned = [f"{s['name']}{suffix}" for s in job["surfaces"] for suffix in (f".{job['mesh_format']}", ".quality.json")]
+    planned = [
+        f"{s['name']}{suffix}" for s in job["surfaces"] for suffix in (f".{job['mesh_format']}", ".quality.json")
+    ]
     _commit(directory, attempt, record, planned)
     shutil.rmtree(attempt, ignore_errors=True)
     return record

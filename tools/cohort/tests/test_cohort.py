@@ -9,7 +9,6 @@ Exits 77 (CTest's skip code here) with a message when this Python has no dask.di
 
 import csv
 import glob
-import hashlib
 import json
 import os
 import shutil
@@ -255,6 +254,74 @@ class SameOutputsTest(unittest.TestCase):
             digests[workers] = file_digests(outdir)
         self.assertEqual(len(digests["1"]), 40)
         self.assertEqual(digests["1"], digests["2"])
+
+
+class ExternalSchedulerTest(CohortAssertions):
+    """--scheduler-file: a scheduler and a worker started apart, as dask-jobqueue or dask-ssh
+    start them, whose worker does not have this package on its Python path (the tasks carry
+    their code)."""
+
+    def test_scheduler_file(self):
+        work = fresh_dir("external")
+        manifest_path = synthetic.make_cohort(TOOL, work, count=6, seed=3)
+        cases = manifest.read_manifest(manifest_path)
+        scheduler_file = os.path.join(work, "scheduler.json")
+        environment = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+        started = []
+        try:
+            started.append(
+                self.start(
+                    [
+                        sys.executable,
+                        "-m",
+                        "distributed.cli.dask_scheduler",
+                        "--host",
+                        "127.0.0.1",
+                        "--port",
+                        "0",
+                        "--no-dashboard",
+                        "--scheduler-file",
+                        scheduler_file,
+                    ],
+                    environment,
+                    work,
+                )
+            )
+            deadline = time.monotonic() + 60
+            while not os.path.exists(scheduler_file):
+                self.assertLess(time.monotonic(), deadline, "the scheduler did not start")
+                time.sleep(0.1)
+            started.append(
+                self.start(
+                    [
+                        sys.executable,
+                        "-m",
+                        "distributed.cli.dask_worker",
+                        "--scheduler-file",
+                        scheduler_file,
+                        "--nworkers",
+                        "1",
+                        "--nthreads",
+                        "1",
+                        "--no-dashboard",
+                    ],
+                    environment,
+                    work,
+                )
+            )
+            status, output = run_cohort(manifest_path, os.path.join(work, "out"), "--scheduler-file", scheduler_file)
+        finally:
+            for process in reversed(started):
+                process.terminate()
+                process.wait(timeout=60)
+        self.assertEqual(status, 1, output)
+        self.assertIn("6 succeeded (0 kept from earlier runs), 1 failed", output)
+        self.assert_cohort_complete(os.path.join(work, "out"), cases)
+
+    @staticmethod
+    def start(command, environment, work):
+        with open(os.path.join(work, f"{command[2].rsplit('.', 1)[-1]}.log"), "w") as log:
+            return subprocess.Popen(command, cwd="/", env=environment, stdout=log, stderr=subprocess.STDOUT)
 
 
 class CommandLineTest(unittest.TestCase):
