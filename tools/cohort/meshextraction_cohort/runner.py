@@ -96,6 +96,7 @@ def dask_client(args):
             silence_logs=logging.ERROR,
         )
         client = distributed.Client(cluster)
+        _workers_ignore_interrupt(client)
         description = f"LocalCluster of {args.workers} worker processes x 1 thread"
     try:
         yield client, description
@@ -105,6 +106,22 @@ def dask_client(args):
         if cluster is not None:
             with contextlib.suppress(Exception):
                 cluster.close(timeout=30)
+
+
+def _workers_ignore_interrupt(client):
+    """The LocalCluster's workers share the client's terminal, so Ctrl-C reaches them too: it
+    is the client's to handle (it cancels the tasks and stops the cluster), and the tool runs
+    in a session of its own, so an interrupted case is not recorded as failed."""
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    class IgnoreInterrupt(WorkerPlugin):
+        name = "meshextraction-cohort-ignore-interrupt"
+
+        def setup(self, worker):
+            with contextlib.suppress(ValueError):  # not the main thread: nothing to do
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    client.register_worker_plugin(IgnoreInterrupt())
 
 
 def _failure_record(case, fingerprint, run_id, message):

@@ -9,7 +9,9 @@ removes such folders, so the record says how many attempts the case took.
 
 The command-line tool runs under `setpriv --pdeathsig KILL` where util-linux has it, so a
 killed worker does not leave its extraction running, and under GNU time where it is
-installed, which measures the tool's own peak memory. Errors of the tool (an unreadable
+installed, which measures the tool's own peak memory. It runs in a session of its own, so
+a Ctrl-C meant for the client does not kill it (the client stops the workers, and with
+them the tool). Errors of the tool (an unreadable
 image, an invalid surface) are results, recorded with their message; an exception here
 (a file-system error) propagates so that Dask retries the task.
 """
@@ -98,7 +100,9 @@ def run_step(name, command, cwd, log, timeout=None):
     log.flush()
     started = time.monotonic()
     with open(stderr_path, "w+b") as stderr:
-        process = subprocess.Popen(_launch_prefix(time_path) + command, cwd=cwd, stdout=log, stderr=stderr)
+        process = subprocess.Popen(
+            _launch_prefix(time_path) + command, cwd=cwd, stdout=log, stderr=stderr, start_new_session=True
+        )
         timer = threading.Timer(timeout, process.kill) if timeout else None
         if timer:
             timer.start()
