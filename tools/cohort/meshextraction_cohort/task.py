@@ -103,7 +103,8 @@ def run_step(name, command, cwd, log, timeout=None):
         process = subprocess.Popen(
             _launch_prefix(time_path) + command, cwd=cwd, stdout=log, stderr=stderr, start_new_session=True
         )
-        timer = threading.Timer(timeout, process.kill) if timeout else None
+        expired = threading.Event()
+        timer = threading.Timer(timeout, lambda: (expired.set(), process.kill())) if timeout else None
         if timer:
             timer.start()
         try:
@@ -138,6 +139,8 @@ def run_step(name, command, cwd, log, timeout=None):
     log.flush()
     if status != 0:
         step["message"] = _error_message(stderr_text, status)
+        if expired.is_set():
+            step["message"] = f"stopped after the time limit of {timeout} s (--timeout)"
     return step
 
 

@@ -329,6 +329,28 @@ class ExternalSchedulerTest(CohortAssertions):
             return subprocess.Popen(command, cwd="/", env=environment, stdout=log, stderr=subprocess.STDOUT)
 
 
+class TimeoutTest(unittest.TestCase):
+    """--timeout stops a case that takes too long and records why; the others go on."""
+
+    def test_timeout(self):
+        work = fresh_dir("timeout")
+        for name, size in (("small", "16"), ("large", "160")):
+            subprocess.run(
+                [TOOL, "phantom", "torus", os.path.join(work, f"{name}.nrrd"), "--size", size],
+                check=True,
+                capture_output=True,
+            )
+        path = os.path.join(work, "m.csv")
+        with open(path, "w") as stream:
+            stream.write(
+                "case,image,iso,inside,options\nsmall,small.nrrd,0,below,\nlarge,large.nrrd,0,below,--quality high\n"
+            )
+        status, output = run_cohort(path, os.path.join(work, "out"), "--workers", "1", "--timeout", "0.3")
+        self.assertEqual(status, 1, output)
+        self.assertIn("FAILED large: extract large: stopped after the time limit of 0.3 s (--timeout)", output)
+        self.assertIn("1 succeeded", output)
+
+
 class CommandLineTest(unittest.TestCase):
     def test_shape_model_is_not_yet(self):
         result = subprocess.run(cohort_command("shape-model", "manifest.csv"), capture_output=True, text=True)
