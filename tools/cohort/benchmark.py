@@ -159,18 +159,24 @@ def head_ct_benchmark(args):
 
 
 def estimate(record, best, cases=1000):
-    """What a cohort of head CTs would take on N workers, from the measured task time and the
-    measured overhead per case, assuming the cases scale like the synthetic cohort did."""
+    """What a cohort of such scans would take on N workers with a core each: the measured task
+    time plus the measured Dask overhead per case, divided over the workers; and the data
+    the shared file system moves."""
     per_case = record["wall_seconds"] + max(best[1]["dask_per_case"], 0.0)
-    efficiency = best[2]["cases_per_second"] / (2 * best[1]["cases_per_second"])
     memory = record["max_rss_mb"]
+    image = os.path.getsize(record["image"]) if os.path.isfile(record["image"]) else 0
+    raw = os.path.splitext(record["image"])[0] + ".raw"
+    image += os.path.getsize(raw) if os.path.isfile(raw) else 0
+    written = record["surfaces"][0]["mesh_bytes"]
     print(
-        f"estimate for {cases} such scans: {per_case:.1f} s per case per worker, peak {memory:.0f} MB per task "
-        f"(+ a worker process), parallel efficiency {efficiency:.2f} as measured for 2 workers here"
+        f"estimate for {cases} such scans, one single-threaded worker per core: {per_case:.1f} s per case, "
+        f"{cases * per_case / 3600:.2f} core-hours; peak {memory:.0f} MB per task plus the worker process; "
+        f"{cases * image / 1e9:.1f} GB read, {cases * written / 1e9:.1f} GB of meshes written"
     )
-    for workers in (1, 2, 8, 32, 128):
-        hours = cases * per_case / (workers * (efficiency if workers > 1 else 1.0)) / 3600
-        print(f"  {workers:>4} workers: {hours:7.2f} h")
+    for workers in (1, 8, 32, 128):
+        seconds = cases * per_case / workers
+        rate = workers / per_case * (image + written) / 1e6
+        print(f"  {workers:>4} workers: {seconds / 3600:6.2f} h, {rate:6.1f} MB/s to and from the shared file system")
 
 
 def main():
