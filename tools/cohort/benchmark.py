@@ -82,7 +82,8 @@ def serial_reference(tool, cases, options, directory):
             extract = [tool, "extract", case.image, mesh, "--threads", "1", *surface.arguments, *options]
             subprocess.run(extract, check=True, capture_output=True)
             measure = [tool, "quality", mesh, "--json", os.path.join(directory, f"{surface.name}.json")]
-            subprocess.run(measure, check=True, capture_output=True)
+            env = dict(os.environ, ITK_GLOBAL_DEFAULT_NUMBER_OF_THREADS="1")
+            subprocess.run(measure, check=True, capture_output=True, env=env)
     return time.monotonic() - started
 
 

@@ -91,17 +91,20 @@ def _error_message(stderr_text, status):
     return "\n".join(lines[-5:])[:_MESSAGE_LIMIT] or f"exit status {status}"
 
 
-def run_step(name, command, cwd, log, timeout=None):
+def run_step(name, command, cwd, log, timeout=None, threads=None):
     """Runs one command, its output appended to the log; returns its status, wall and CPU
     time and peak resident memory (of the tool's process alone)."""
     stderr_path = os.path.join(cwd, f".{name.replace(' ', '-')}.stderr")
     time_path = os.path.join(cwd, f".{name.replace(' ', '-')}.time")
     log.write(f"$ {shlex.join(command)}\n".encode())
     log.flush()
+    # ITK's filters that take no thread count (the quality command's) use every core: hold
+    # them to the task's share, so that one task per core does not oversubscribe the cores.
+    env = dict(os.environ, ITK_GLOBAL_DEFAULT_NUMBER_OF_THREADS=str(threads)) if threads else None
     started = time.monotonic()
     with open(stderr_path, "w+b") as stderr:
         process = subprocess.Popen(
-            _launch_prefix(time_path) + command, cwd=cwd, stdout=log, stderr=stderr, start_new_session=True
+            _launch_prefix(time_path) + command, cwd=cwd, stdout=log, stderr=stderr, start_new_session=True, env=env
         )
         expired = threading.Event()
         timer = threading.Timer(timeout, lambda: (expired.set(), process.kill())) if timeout else None
@@ -207,11 +210,11 @@ def _extract_surface(job, surface, attempt, log):
     tool, case = job["tool"], job["case"]
     extract = [tool, "extract", case["image"], mesh, "--threads", str(job["task_threads"])]
     extract += list(surface["arguments"]) + list(job["common_options"]) + list(case["options"])
-    steps = [run_step(f"extract {surface['name']}", extract, attempt, log, job.get("timeout"))]
+    steps = [run_step(f"extract {surface['name']}", extract, attempt, log, job.get("timeout"), job["task_threads"])]
     if steps[-1]["status"] != 0:
         return steps, None, f"extract {surface['name']}: {steps[-1]['message']}"
     measure = [tool, "quality", mesh, "--json", quality_json] + list(job["quality_options"])
-    steps.append(run_step(f"quality {surface['name']}", measure, attempt, log, job.get("timeout")))
+    steps.append(run_step(f"quality {surface['name']}", measure, attempt, log, job.get("timeout"), job["task_threads"]))
     if steps[-1]["status"] != 0:
         return steps, None, f"quality {surface['name']}: {steps[-1]['message']}"
     quality = outputs.quality_of(os.path.join(attempt, quality_json))
