@@ -2,12 +2,14 @@
 # Installs what MeshExtraction needs on Debian bookworm, from Debian's archive only:
 # ITK 5.2.1, VTK 9.1 (for the comparison tool), GoogleTest, Google Benchmark, the
 # build tools, and the real data the main job uses: the head CT of invesalius-examples
-# and the Colin27 T1 MRI of mricron-data.
+# and the Colin27 T1 MRI of mricron-data; for meshextraction-cohort (tools/cohort/),
+# Dask's distributed scheduler for /usr/bin/python3, and GNU time (per-task memory).
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache
   libinsighttoolkit5-dev libvtk9-dev libgtest-dev libbenchmark-dev
   python3 invesalius-examples mricron-data
+  python3-distributed time
 )
 missing=()
 for p in "${packages[@]}"; do
