@@ -19,6 +19,9 @@ itk_module(MeshExtraction
     ITKImageIntensity
     ITKImageSources
     ITKTransform
+    ITKOptimizers
+    ITKRegistrationCommon
+    ITKStatistics
     ITKImageNoise
   TEST_DEPENDS
     ITKTestKernel
@@ -30,7 +33,6 @@ itk_module(MeshExtraction
     ITKIOMeshVTK
     ITKIOMeshOBJ
     ITKIOMeshOFF
-    ITKRegistrationCommon
   DESCRIPTION
     "${DOCUMENTATION}"
   EXCLUDE_FROM_DEFAULT

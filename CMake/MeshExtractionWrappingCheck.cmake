@@ -174,7 +174,7 @@ function(meshextraction_check_wrapping wrapping_dir include_dir output_dir probl
     list(REMOVE_DUPLICATES _includes)
     foreach(_header ${_includes})
       # The module's own headers must exist; ITK's are found by the compiler.
-      if(_header MATCHES "^itk(MeshExtraction|SurfaceNets|[A-Za-z]*ImplicitSurface|TriangleMesh|MeshSurface|ScaleSpace|EdgeSwap|LaplacianSmoothingQuad|TaubinSmoothingQuad|ThreeLandmark)"
+      if(_header MATCHES "^itk(MeshExtraction|SurfaceNets|[A-Za-z]*ImplicitSurface|TriangleMesh|MeshSurface|ScaleSpace|EdgeSwap|LaplacianSmoothingQuad|TaubinSmoothingQuad|ThreeLandmark|Symmetric)"
          AND NOT EXISTS "${include_dir}/${_header}")
         _meshextraction_wrap_problem("${_meshextraction_wrap_file}: includes ${_header}, which is not in include/")
       endif()

@@ -119,6 +119,15 @@ public:
     Smoothing
   };
 
+  /** How a point finds its counterpart on another mesh (thesis section 7.3.1). */
+  enum class Correspondence : std::uint8_t
+  {
+    /** The closest vertex. */
+    PointToPoint = 0,
+    /** The closest point on the triangles (barycentric interpolation of their corners). */
+    PointToSurface
+  };
+
   /** The distension that ThreeLandmarkIncrementalTransformInitializer adds to the
    * rigid incremental match (thesis section 6.2.2: "distention can be described by
    * scaling along these axes"). */
@@ -152,6 +161,8 @@ MeshExtraction_EXPORT std::ostream &
                       operator<<(std::ostream & out, MeshExtractionEnums::RefinementOperation value);
 MeshExtraction_EXPORT std::ostream &
                       operator<<(std::ostream & out, MeshExtractionEnums::LandmarkDistension value);
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & out, MeshExtractionEnums::Correspondence value);
 
 } // namespace itk
 

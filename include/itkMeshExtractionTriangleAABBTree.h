@@ -191,6 +191,11 @@ public:
   /** Closest point of the mesh to p (over the triangles in the tree). */
   Nearest
   FindNearest(const Vec3 & p) const;
+  /** The same, started from the triangle `hint` (e.g. the answer for a point nearby):
+   * faster, and the same distance; where several triangles are equally near, it may name
+   * another of them than the search without a hint. */
+  Nearest
+  FindNearest(const Vec3 & p, std::uint32_t hint) const;
 
   /** Calls visit(triangle) for every triangle whose box overlaps `box`. */
   template <typename TVisitor>

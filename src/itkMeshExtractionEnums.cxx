@@ -141,4 +141,16 @@ operator<<(std::ostream & out, MeshExtractionEnums::LandmarkDistension value)
   }
   return out << "INVALID VALUE FOR itk::MeshExtractionEnums::LandmarkDistension";
 }
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::Correspondence value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::Correspondence::PointToPoint:
+      return out << "itk::MeshExtractionEnums::Correspondence::PointToPoint";
+    case MeshExtractionEnums::Correspondence::PointToSurface:
+      return out << "itk::MeshExtractionEnums::Correspondence::PointToSurface";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::Correspondence";
+}
 } // namespace itk

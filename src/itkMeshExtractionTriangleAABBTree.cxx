@@ -311,10 +311,24 @@ TriangleAABBTree::Refit(const IndexedTriangleMesh & mesh, const AxisAlignedBoxAr
 TriangleAABBTree::Nearest
 TriangleAABBTree::FindNearest(const Vec3 & p) const
 {
+  return this->FindNearest(p, std::numeric_limits<std::uint32_t>::max());
+}
+
+TriangleAABBTree::Nearest
+TriangleAABBTree::FindNearest(const Vec3 & p, std::uint32_t hint) const
+{
   Nearest best;
   if (m_Nodes.empty())
   {
     return best;
+  }
+  if (hint < m_Mesh->triangles.size())
+  {
+    // A triangle near p (the answer of a query nearby) bounds the search from the start.
+    const auto & t = m_Mesh->triangles[hint];
+    best.point = ClosestPointOnTriangle(p, m_Mesh->points[t[0]], m_Mesh->points[t[1]], m_Mesh->points[t[2]]);
+    best.squaredDistance = SquaredNorm(p - best.point);
+    best.triangle = hint;
   }
   struct Entry
   {
