@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionEdgeSwapCriteria_h
 #define itkMeshExtractionEdgeSwapCriteria_h
 
@@ -29,6 +30,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief The decision whether to swap one edge, as pure functions of the quad
@@ -283,6 +286,7 @@ EvaluateEdgeSwap(const EdgeSwapQuad & q, const EdgeSwapParameters & p)
   return decision;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

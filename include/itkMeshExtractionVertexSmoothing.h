@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionVertexSmoothing_h
 #define itkMeshExtractionVertexSmoothing_h
 
@@ -29,6 +30,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief One smoothing move of one vertex, as pure functions of the vertex and its
@@ -284,6 +287,7 @@ SmoothingDisplacement(const VertexSmoothingParameters & p, const VertexOneRing &
   return d;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

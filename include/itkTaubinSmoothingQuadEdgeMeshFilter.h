@@ -73,7 +73,7 @@ public:
 
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
-  using SmootherType = MeshExtraction::QuadEdgeMeshVertexSmoother<OutputMeshType>;
+  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
   using CoefficientsComputation = MatrixCoefficients<OutputMeshType>;
 
   using SmoothingWeightsEnum = MeshExtractionEnums::SmoothingWeights;

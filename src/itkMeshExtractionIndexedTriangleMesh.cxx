@@ -337,6 +337,8 @@ CountBoundaryLoops(std::size_t numberOfPoints, MeshTopology & topo)
 }
 } // namespace
 
+namespace detail
+{
 void
 SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIndices & t0, TriangleIndices & t1)
 {
@@ -354,8 +356,6 @@ SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIn
   }
 }
 
-namespace Detail
-{
 PointIdentifierMap::PointIdentifierMap(IdentifierType maximumIdentifier, std::size_t numberOfPoints)
     : m_MaximumIdentifier(maximumIdentifier)
     , m_Dense(maximumIdentifier < 4 * static_cast<IdentifierType>(numberOfPoints) + 1024)
@@ -368,7 +368,7 @@ PointIdentifierMap::ThrowMissingPoint(IdentifierType id, IdentifierType cellId)
   itkGenericExceptionMacro("MeshExtraction: cell " << cellId << " references point " << id
                                                    << ", which the mesh does not have.");
 }
-} // namespace Detail
+} // namespace detail
 
 MeshTopology
 BuildMeshTopology(const IndexedTriangleMesh & mesh)

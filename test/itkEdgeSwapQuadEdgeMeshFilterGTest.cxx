@@ -39,11 +39,11 @@
 #include <sstream>
 
 using namespace MeshExtractionTest;
-using itk::MeshExtraction::EdgeSwapDecision;
-using itk::MeshExtraction::EdgeSwapParameters;
-using itk::MeshExtraction::EdgeSwapQuad;
-using itk::MeshExtraction::EdgeSwapVerdict;
 using itk::MeshExtraction::TriangleMeshQualityReport;
+using itk::MeshExtraction::detail::EdgeSwapDecision;
+using itk::MeshExtraction::detail::EdgeSwapParameters;
+using itk::MeshExtraction::detail::EdgeSwapQuad;
+using itk::MeshExtraction::detail::EdgeSwapVerdict;
 
 namespace
 {
@@ -125,7 +125,7 @@ RemainingSwaps(const TMesh * mesh, const EdgeSwapParameters & parameters)
     }
     q.sameApex = quad[2] == quad[3];
     q.oppositeEdgeExists = mesh->FindEdge(m.pointIds[quad[2]], m.pointIds[quad[3]]) != nullptr;
-    remaining += itk::MeshExtraction::EvaluateEdgeSwap(q, parameters).Swap();
+    remaining += itk::MeshExtraction::detail::EvaluateEdgeSwap(q, parameters).Swap();
   }
   return remaining;
 }
@@ -214,17 +214,17 @@ TEST(EdgeSwapQuadEdgeMeshFilter, RegularityGainIsTheDropOfTheRelaxationIndexEb)
   q.valenceC = 5;
   q.valenceD = 4;
   // E_b before: 1 + 4 + 1 + 4 = 10; after (6, 7, 6, 5): 0 + 1 + 0 + 1 = 2.
-  EXPECT_DOUBLE_EQ(itk::MeshExtraction::EdgeSwapGain(Criterion::Regularity, q), 8.0);
+  EXPECT_DOUBLE_EQ(itk::MeshExtraction::detail::EdgeSwapGain(Criterion::Regularity, q), 8.0);
   EdgeSwapParameters p;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::Swap);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::Swap);
   q.valenceA = q.valenceB = q.valenceC = q.valenceD = 6;
-  EXPECT_DOUBLE_EQ(itk::MeshExtraction::EdgeSwapGain(Criterion::Regularity, q), -4.0);
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NoImprovement);
+  EXPECT_DOUBLE_EQ(itk::MeshExtraction::detail::EdgeSwapGain(Criterion::Regularity, q), -4.0);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NoImprovement);
   // A boundary corner aims at valence 4.
   q.valenceC = 3;
   q.boundaryC = true;
   // Before (6, 6, 3, 6): 0 + 0 + 1 + 0; after (5, 5, 4, 7): 1 + 1 + 0 + 1.
-  EXPECT_DOUBLE_EQ(itk::MeshExtraction::EdgeSwapGain(Criterion::Regularity, q), -2.0);
+  EXPECT_DOUBLE_EQ(itk::MeshExtraction::detail::EdgeSwapGain(Criterion::Regularity, q), -2.0);
 }
 
 TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayGainAgreesWithTheCircumcircleTestOfFigure2_18)
@@ -236,7 +236,7 @@ TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayGainAgreesWithTheCircumcircleTestOfFigu
   for (int k = 0; k < 2000; ++k)
   {
     const EdgeSwapQuad q = FlatQuad(MakeVec3(x(rng), y(rng), 0), MakeVec3(x(rng), -y(rng), 0));
-    const double       gain = itk::MeshExtraction::EdgeSwapGain(Criterion::Delaunay, q);
+    const double       gain = itk::MeshExtraction::detail::EdgeSwapGain(Criterion::Delaunay, q);
     if (std::abs(gain) < 1e-9)
     {
       continue;
@@ -261,9 +261,9 @@ TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayShortcutDecidesAsTheOppositeAngleSum)
   EdgeSwapParameters                     p;
   p.criterion = Criterion::Delaunay;
   auto exactVerdict = [&p](const EdgeSwapQuad & q) {
-    const double gain = itk::MeshExtraction::EdgeSwapGain(Criterion::Delaunay, q);
-    return itk::MeshExtraction::IsEdgeSwapImprovement(Criterion::Delaunay, q, gain)
-             ? itk::MeshExtraction::CheckEdgeSwap(q, p)
+    const double gain = itk::MeshExtraction::detail::EdgeSwapGain(Criterion::Delaunay, q);
+    return itk::MeshExtraction::detail::IsEdgeSwapImprovement(Criterion::Delaunay, q, gain)
+             ? itk::MeshExtraction::detail::CheckEdgeSwap(q, p)
              : EdgeSwapVerdict::NoImprovement;
   };
   int shortcuts = 0;
@@ -288,22 +288,22 @@ TEST(EdgeSwapQuadEdgeMeshFilter, DelaunayShortcutDecidesAsTheOppositeAngleSum)
         q.d[2] = z(rng);
       }
     }
-    shortcuts += itk::MeshExtraction::NeitherOppositeAngleIsObtuse(q) ? 1 : 0;
-    const EdgeSwapDecision decision = itk::MeshExtraction::EvaluateEdgeSwap(q, p);
+    shortcuts += itk::MeshExtraction::detail::NeitherOppositeAngleIsObtuse(q) ? 1 : 0;
+    const EdgeSwapDecision decision = itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p);
     const EdgeSwapVerdict  verdict = decision.verdict;
     swaps += verdict == EdgeSwapVerdict::Swap ? 1 : 0;
     EXPECT_EQ(verdict, exactVerdict(q)) << q.c << ' ' << q.d;
     // The criterion's half alone (as SwapEdges asks it) agrees, gain included.
     double gain = -1.0;
-    EXPECT_EQ(itk::MeshExtraction::EdgeSwapImproves(q, p, gain), verdict != EdgeSwapVerdict::NoImprovement);
+    EXPECT_EQ(itk::MeshExtraction::detail::EdgeSwapImproves(q, p, gain), verdict != EdgeSwapVerdict::NoImprovement);
     EXPECT_EQ(gain, decision.gain);
   }
   EXPECT_GT(shortcuts, 1000);
   EXPECT_GT(swaps, 100);
   // A square with (a, b) as its diagonal: right angles, no gain, no swap either way.
   const EdgeSwapQuad square = FlatQuad(MakeVec3(0.5, 0.5, 0), MakeVec3(0.5, -0.5, 0));
-  EXPECT_TRUE(itk::MeshExtraction::NeitherOppositeAngleIsObtuse(square));
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(square, p).verdict, EdgeSwapVerdict::NoImprovement);
+  EXPECT_TRUE(itk::MeshExtraction::detail::NeitherOppositeAngleIsObtuse(square));
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(square, p).verdict, EdgeSwapVerdict::NoImprovement);
   EXPECT_EQ(exactVerdict(square), EdgeSwapVerdict::NoImprovement);
 }
 
@@ -314,10 +314,10 @@ TEST(EdgeSwapQuadEdgeMeshFilter, ConcaveQuadIsNeverSwapped)
   q.valenceA = q.valenceB = 8;
   q.valenceC = q.valenceD = 4;
   EdgeSwapParameters p;
-  EXPECT_GT(itk::MeshExtraction::EdgeSwapGain(Criterion::Regularity, q), 0.0);
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NormalsDisagree);
+  EXPECT_GT(itk::MeshExtraction::detail::EdgeSwapGain(Criterion::Regularity, q), 0.0);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NormalsDisagree);
   p.criterion = Criterion::ShortestEdge;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NoImprovement);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NoImprovement);
 }
 
 TEST(EdgeSwapQuadEdgeMeshFilter, SwapThatLeavesAVertexWithTwoEdgesIsRefused)
@@ -329,9 +329,9 @@ TEST(EdgeSwapQuadEdgeMeshFilter, SwapThatLeavesAVertexWithTwoEdgesIsRefused)
   q.valenceC = q.valenceD = 4;
   EdgeSwapParameters p;
   p.criterion = Criterion::ShortestEdge;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::ValenceTooLow);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::ValenceTooLow);
   q.valenceA = 4;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::Swap);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::Swap);
 }
 
 TEST(EdgeSwapQuadEdgeMeshFilter, ExistingOppositeEdgeIsNeverDuplicated)
@@ -340,10 +340,10 @@ TEST(EdgeSwapQuadEdgeMeshFilter, ExistingOppositeEdgeIsNeverDuplicated)
   EdgeSwapParameters p;
   p.criterion = Criterion::ShortestEdge;
   q.oppositeEdgeExists = true;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NotManifold);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NotManifold);
   q.oppositeEdgeExists = false;
   q.sameApex = true;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NotManifold);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::NotManifold);
 }
 
 TEST(EdgeSwapQuadEdgeMeshFilter, FeatureEdgesAreNeitherCutNorCreated)
@@ -354,10 +354,10 @@ TEST(EdgeSwapQuadEdgeMeshFilter, FeatureEdgesAreNeitherCutNorCreated)
   EdgeSwapParameters p;
   p.criterion = Criterion::ShortestEdge;
   p.featureAngle = 60.0 * itk::Math::pi / 180.0;
-  EXPECT_GT(itk::MeshExtraction::EdgeSwapGain(p.criterion, q), 0.0);
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::FeatureEdge);
+  EXPECT_GT(itk::MeshExtraction::detail::EdgeSwapGain(p.criterion, q), 0.0);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::FeatureEdge);
   p.featureAngle = itk::Math::pi;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::Swap);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::Swap);
 }
 
 TEST(EdgeSwapQuadEdgeMeshFilter, SwapCreatingADegenerateTriangleIsRefused)
@@ -368,7 +368,7 @@ TEST(EdgeSwapQuadEdgeMeshFilter, SwapCreatingADegenerateTriangleIsRefused)
   EdgeSwapParameters p;
   p.criterion = Criterion::ShortestEdge;
   p.featureAngle = itk::Math::pi;
-  EXPECT_EQ(itk::MeshExtraction::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::DegenerateTriangle);
+  EXPECT_EQ(itk::MeshExtraction::detail::EvaluateEdgeSwap(q, p).verdict, EdgeSwapVerdict::DegenerateTriangle);
 }
 
 // ------------------------------------------------------------------------------

@@ -544,12 +544,12 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, VolumePreservationKeepsSphereVolumeWi
 TEST(LaplacianSmoothingQuadEdgeMeshFilter, VolumePreservingMoveKeepsTheConeVolumeOfItsRing)
 {
   // eq. 2.7-2.10: the cone volume sum_f v.N_f does not change when v moves.
-  const std::vector<Vec3>            ring = { MakeVec3(1, 0, 0.3),
-                                              MakeVec3(0.2, 1.1, -0.2),
-                                              MakeVec3(-1, 0.3, 0.4),
-                                              MakeVec3(-0.6, -0.9, 0.1),
-                                              MakeVec3(0.7, -0.8, -0.3) };
-  itk::MeshExtraction::VertexOneRing r;
+  const std::vector<Vec3>                    ring = { MakeVec3(1, 0, 0.3),
+                                                      MakeVec3(0.2, 1.1, -0.2),
+                                                      MakeVec3(-1, 0.3, 0.4),
+                                                      MakeVec3(-0.6, -0.9, 0.1),
+                                                      MakeVec3(0.7, -0.8, -0.3) };
+  itk::MeshExtraction::detail::VertexOneRing r;
   r.center = MakeVec3(0.1, -0.05, 0.6);
   r.ring = ring.data();
   r.size = ring.size();
@@ -562,15 +562,15 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, VolumePreservingMoveKeepsTheConeVolum
     }
     return sum;
   };
-  itk::MeshExtraction::VertexSmoothingParameters p;
+  itk::MeshExtraction::detail::VertexSmoothingParameters p;
   p.volumePreservation = true;
   for (Weights w : AllWeights)
   {
-    const Vec3 target = itk::MeshExtraction::LaplacianTarget(w, r);
-    const Vec3 d = itk::MeshExtraction::SmoothingDisplacement(p, r, target);
+    const Vec3 target = itk::MeshExtraction::detail::LaplacianTarget(w, r);
+    const Vec3 d = itk::MeshExtraction::detail::SmoothingDisplacement(p, r, target);
     EXPECT_GT(itk::MeshExtraction::Norm(d), 0.01) << w;
     EXPECT_NEAR(coneVolume(r.center + d), coneVolume(r.center), 1e-12) << w;
-    EXPECT_NEAR(itk::MeshExtraction::Dot(d, itk::MeshExtraction::OneRingNormal(r)), 0.0, 1e-12) << w;
+    EXPECT_NEAR(itk::MeshExtraction::Dot(d, itk::MeshExtraction::detail::OneRingNormal(r)), 0.0, 1e-12) << w;
   }
 }
 
@@ -616,13 +616,13 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, EveryWeightKeepsTheCentreOfARegularPl
   {
     ring.push_back(MakeVec3(std::cos(i * itk::Math::pi / 3), std::sin(i * itk::Math::pi / 3), 0));
   }
-  itk::MeshExtraction::VertexOneRing r;
+  itk::MeshExtraction::detail::VertexOneRing r;
   r.center = MakeVec3(0, 0, 0);
   r.ring = ring.data();
   r.size = ring.size();
   for (Weights w : AllWeights)
   {
-    ITK_EXPECT_VECTOR_NEAR(itk::MeshExtraction::LaplacianTarget(w, r), MakeVec3(0, 0, 0), 1e-12);
+    ITK_EXPECT_VECTOR_NEAR(itk::MeshExtraction::detail::LaplacianTarget(w, r), MakeVec3(0, 0, 0), 1e-12);
   }
 }
 

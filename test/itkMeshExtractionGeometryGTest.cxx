@@ -35,6 +35,7 @@
 #include <thread>
 
 using namespace itk::MeshExtraction;
+using namespace itk::MeshExtraction::detail;
 using MeshExtractionTest::MakeIcosphere;
 
 namespace

@@ -45,7 +45,7 @@ using MeshType = itk::QuadEdgeMesh<double, 3>;
 using ImageType = itk::Image<float, 3>;
 using ShortImageType = itk::Image<short, 3>;
 using FilterType = itk::ScaleSpaceEdgeDetectionMeshFilter<MeshType, ImageType>;
-using ScaleSpaceType = ME::GaussianGradientMagnitudeScaleSpace<ImageType>;
+using ScaleSpaceType = ME::detail::GaussianGradientMagnitudeScaleSpace<ImageType>;
 using Direction = itk::MeshExtractionEnums::EdgeSearchDirection;
 
 using MeshExtractionScaleSpaceTest::Chapter4SphereCenter;
@@ -88,7 +88,7 @@ double
 MeanAbsoluteDistance(const ME::IndexedTriangleMesh & m, const itk::ImplicitSurfaceFunction & surface)
 {
   double sum = 0.0;
-  for (const double d : ME::SignedDistancesToSurface(m.points, surface))
+  for (const double d : ME::detail::SignedDistancesToSurface(m.points, surface))
   {
     sum += std::abs(d);
   }
@@ -193,7 +193,7 @@ Append(ME::IndexedTriangleMesh & mesh, const ME::IndexedTriangleMesh & other)
 
 TEST(ScaleSpaceEdgeDetection, ScalesAreLogarithmicFromMaximumToMinimum)
 {
-  const std::vector<double> scales = ME::ScaleSpaceScales(3.0, 1.0, 4);
+  const std::vector<double> scales = ME::detail::ScaleSpaceScales(3.0, 1.0, 4);
   ASSERT_EQ(scales.size(), 8u); // ceil(4 log2 3) = 7 steps
   EXPECT_DOUBLE_EQ(scales.front(), 3.0);
   EXPECT_DOUBLE_EQ(scales.back(), 1.0);
@@ -203,20 +203,20 @@ TEST(ScaleSpaceEdgeDetection, ScalesAreLogarithmicFromMaximumToMinimum)
     EXPECT_LE(scales[i - 1] / scales[i], std::pow(2.0, 1.0 / 4.0) + 1e-12);
   }
   // Exactly n per octave when the ratio is a power of two: 2^(i/n).
-  const std::vector<double> octaves = ME::ScaleSpaceScales(4.0, 1.0, 2);
+  const std::vector<double> octaves = ME::detail::ScaleSpaceScales(4.0, 1.0, 2);
   ASSERT_EQ(octaves.size(), 5u);
   for (std::size_t i = 0; i < octaves.size(); ++i)
   {
     EXPECT_NEAR(octaves[i], std::pow(2.0, (4.0 - static_cast<double>(i)) / 2.0), 1e-12);
   }
-  EXPECT_EQ(ME::ScaleSpaceScales(0.5, 1.0, 4), std::vector<double>{ 0.5 });
-  EXPECT_TRUE(ME::ScaleSpaceScales(0.0, 1.0, 4).empty());
-  EXPECT_TRUE(ME::ScaleSpaceScales(3.0, 1.0, 0).empty());
+  EXPECT_EQ(ME::detail::ScaleSpaceScales(0.5, 1.0, 4), std::vector<double>{ 0.5 });
+  EXPECT_TRUE(ME::detail::ScaleSpaceScales(0.0, 1.0, 4).empty());
+  EXPECT_TRUE(ME::detail::ScaleSpaceScales(3.0, 1.0, 0).empty());
 }
 
 TEST(ScaleSpaceEdgeDetection, SearchFindsTheMaximumWithinHalfAStep)
 {
-  const std::vector<double> scales = ME::ScaleSpaceScales(4.0, 1.0, 4);
+  const std::vector<double> scales = ME::detail::ScaleSpaceScales(4.0, 1.0, 4);
   for (const double edge : { -3.1, -1.37, 0.0, 0.22, 1.3, 2.71, 3.9 })
   {
     // The gradient magnitude of a step at `edge` blurred by the scale (plus 1 mm).
@@ -224,29 +224,29 @@ TEST(ScaleSpaceEdgeDetection, SearchFindsTheMaximumWithinHalfAStep)
       const double s2 = scales[k] * scales[k] + 1.0;
       return std::exp(-0.5 * (t - edge) * (t - edge) / s2) / std::sqrt(s2);
     };
-    const double thesis = ME::SearchEdgeAlongLine(scales, 4.0, profile, false);
+    const double thesis = ME::detail::SearchEdgeAlongLine(scales, 4.0, profile, false);
     EXPECT_LE(std::abs(thesis - edge), 0.25 + 1e-12) << edge; // half a step of the finest scale
-    const double refined = ME::SearchEdgeAlongLine(scales, 4.0, profile, true);
+    const double refined = ME::detail::SearchEdgeAlongLine(scales, 4.0, profile, true);
     EXPECT_LE(std::abs(refined - edge), 0.02) << edge;
   }
   // An edge beyond the capture range: the windows stay inside it.
   auto far = [](std::size_t, double t) { return std::exp(-0.5 * (t - 7.0) * (t - 7.0)); };
-  EXPECT_DOUBLE_EQ(ME::SearchEdgeAlongLine(scales, 4.0, far, false), 4.0);
-  EXPECT_LE(ME::SearchEdgeAlongLine(scales, 4.0, far, true), 4.0);
+  EXPECT_DOUBLE_EQ(ME::detail::SearchEdgeAlongLine(scales, 4.0, far, false), 4.0);
+  EXPECT_LE(ME::detail::SearchEdgeAlongLine(scales, 4.0, far, true), 4.0);
   // A flat profile keeps the vertex where it is (ties prefer the window's centre).
   auto flat = [](std::size_t, double) { return 1.0; };
-  EXPECT_EQ(ME::SearchEdgeAlongLine(scales, 4.0, flat, true), 0.0);
+  EXPECT_EQ(ME::detail::SearchEdgeAlongLine(scales, 4.0, flat, true), 0.0);
   // One step: the window is translated back inside the capture range.
   std::vector<double> seen;
-  const double        best = ME::EdgeSearchStep(3.5, 1.0, 4.0, [&](double t) {
+  const double        best = ME::detail::EdgeSearchStep(3.5, 1.0, 4.0, [&](double t) {
     seen.push_back(t);
     return t;
   });
   EXPECT_DOUBLE_EQ(best, 4.0);
   EXPECT_EQ(seen, (std::vector<double>{ 3.0, 2.5, 3.5, 2.0, 4.0 }));
-  EXPECT_NEAR(ME::ParabolicPeakOffset(0.0, 0.0, -2.0, 1.0), -0.5, 1e-12); // y = -(x + 0.5)^2 + 0.25
-  EXPECT_NEAR(ME::ParabolicPeakOffset(0.75, 1.0, 0.75, 1.0), 0.0, 1e-12);
-  EXPECT_EQ(ME::ParabolicPeakOffset(1.0, 0.0, 1.0, 1.0), 0.0); // not a maximum
+  EXPECT_NEAR(ME::detail::ParabolicPeakOffset(0.0, 0.0, -2.0, 1.0), -0.5, 1e-12); // y = -(x + 0.5)^2 + 0.25
+  EXPECT_NEAR(ME::detail::ParabolicPeakOffset(0.75, 1.0, 0.75, 1.0), 0.0, 1e-12);
+  EXPECT_EQ(ME::detail::ParabolicPeakOffset(1.0, 0.0, 1.0, 1.0), 0.0); // not a maximum
 }
 
 TEST(ScaleSpaceEdgeDetection, GaussianDerivativeKernels)
@@ -255,8 +255,8 @@ TEST(ScaleSpaceEdgeDetection, GaussianDerivativeKernels)
   {
     for (const double sigma : { 0.4, 1.0, 3.0 })
     {
-      const std::vector<float> g = ME::GaussianKernel(sigma, spacing, 0);
-      const std::vector<float> d = ME::GaussianKernel(sigma, spacing, 1);
+      const std::vector<float> g = ME::detail::GaussianKernel(sigma, spacing, 0);
+      const std::vector<float> d = ME::detail::GaussianKernel(sigma, spacing, 1);
       double                   sum = 0.0;
       double                   slope = 0.0;
       const int                r = static_cast<int>(d.size() / 2);
@@ -360,10 +360,10 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresAComponentTurnedInsideOut)
   const std::vector<Vec3> moved = mesh.points;
   for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
   {
-    ASSERT_TRUE(ME::IsValidTriangleAgainstStart(mesh, start, f, 1e-6)) << f; // no triangle flips
+    ASSERT_TRUE(ME::detail::IsValidTriangleAgainstStart(mesh, start, f, 1e-6)) << f; // no triangle flips
   }
 
-  EXPECT_EQ(ME::UndoFoldingMoves(mesh, topology, start, 1e-6), n);
+  EXPECT_EQ(ME::detail::UndoFoldingMoves(mesh, topology, start, 1e-6), n);
   for (std::size_t i = 0; i < mesh.points.size(); ++i)
   {
     EXPECT_EQ(mesh.points[i], i < n ? start[i] : moved[i]) << i;
@@ -374,16 +374,16 @@ TEST(ScaleSpaceEdgeDetection, ComponentNestingParityCountsTheSurfacesAroundEachC
 {
   const Vec3              center = ME::MakeVec3(10.0, 10.0, 10.0);
   ME::IndexedTriangleMesh mesh = ME::MakeGeodesicSphere(2, center, 8.0);
-  EXPECT_TRUE(ME::ComponentNestingParity(mesh, ME::BuildMeshTopology(mesh)).empty()); // one component
-  Append(mesh, ME::MakeGeodesicSphere(2, center, 4.0));                               // inside the first
-  Append(mesh, ME::MakeGeodesicSphere(1, center + ME::MakeVec3(1, 0.5, 0.25), 1.0));  // inside both
-  Append(mesh, ME::MakeGeodesicSphere(1, center + ME::MakeVec3(20, 0, 0), 2.0));      // apart
+  EXPECT_TRUE(ME::detail::ComponentNestingParity(mesh, ME::BuildMeshTopology(mesh)).empty()); // one component
+  Append(mesh, ME::MakeGeodesicSphere(2, center, 4.0));                                       // inside the first
+  Append(mesh, ME::MakeGeodesicSphere(1, center + ME::MakeVec3(1, 0.5, 0.25), 1.0));          // inside both
+  Append(mesh, ME::MakeGeodesicSphere(1, center + ME::MakeVec3(20, 0, 0), 2.0));              // apart
   ME::IndexedTriangleMesh open = ME::MakeGeodesicSphere(1, center + ME::MakeVec3(0, 20, 0), 2.0);
   open.triangles.pop_back(); // a hole
   Append(mesh, open);
   const ME::MeshTopology topology = ME::BuildMeshTopology(mesh);
   ASSERT_EQ(topology.numberOfComponents, 5u);
-  const std::vector<std::int8_t> parity = ME::ComponentNestingParity(mesh, topology);
+  const std::vector<std::int8_t> parity = ME::detail::ComponentNestingParity(mesh, topology);
   ASSERT_EQ(parity.size(), 5u);
   const std::vector<std::int8_t> expected{ 0, 1, 0, 0, -1 }; // components in triangle order
   EXPECT_EQ(parity, expected);
@@ -399,19 +399,19 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresASurfaceThatMovedPastASmal
   ME::IndexedTriangleMesh mesh = ME::MakeGeodesicSphere(3, center, 5.0);
   const std::size_t       n = mesh.points.size();
   Append(mesh, ME::MakeGeodesicSphere(1, center + ME::MakeVec3(4.5, 0.05, -0.03), 0.1));
-  const ME::MeshTopology         topology = ME::BuildMeshTopology(mesh);
-  const std::vector<Vec3>        start = mesh.points;
-  const ME::ComponentReference   reference = ME::MakeComponentReference(mesh, topology);
-  const std::vector<std::int8_t> expected{ 0, 1 };
+  const ME::MeshTopology               topology = ME::BuildMeshTopology(mesh);
+  const std::vector<Vec3>              start = mesh.points;
+  const ME::detail::ComponentReference reference = ME::detail::MakeComponentReference(mesh, topology);
+  const std::vector<std::int8_t>       expected{ 0, 1 };
   ASSERT_EQ(reference.nesting, expected);
   for (std::size_t i = 0; i < n; ++i)
   {
     mesh.points[i] = center + (start[i] - center) * 0.8; // radius 4: the small sphere is outside now
   }
   const std::vector<Vec3> moved = mesh.points;
-  ASSERT_TRUE(ME::FindSelfIntersections(mesh).empty());
+  ASSERT_TRUE(ME::detail::FindSelfIntersections(mesh).empty());
   // The cheap filter that lets most steps skip the parity test names the small sphere.
-  const std::vector<std::uint32_t> mayHavePassed = ME::ComponentsAMoveMayHavePassed(mesh, topology, start);
+  const std::vector<std::uint32_t> mayHavePassed = ME::detail::ComponentsAMoveMayHavePassed(mesh, topology, start);
   EXPECT_NE(std::find(mayHavePassed.begin(), mayHavePassed.end(), 1u), mayHavePassed.end());
   {
     // Only the far side moving: nothing can have passed the small sphere.
@@ -420,17 +420,17 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresASurfaceThatMovedPastASmal
     {
       farSide.points[i] = i < n && start[i][0] < center[0] ? moved[i] : start[i];
     }
-    EXPECT_TRUE(ME::ComponentsAMoveMayHavePassed(farSide, topology, start).empty());
+    EXPECT_TRUE(ME::detail::ComponentsAMoveMayHavePassed(farSide, topology, start).empty());
   }
 
   // Without the reference, nothing seems wrong.
-  EXPECT_EQ(ME::UndoFoldingMoves(mesh, topology, start, 1e-6), 0u);
-  EXPECT_NE(ME::ComponentNestingParity(mesh, topology), expected);
+  EXPECT_EQ(ME::detail::UndoFoldingMoves(mesh, topology, start, 1e-6), 0u);
+  EXPECT_NE(ME::detail::ComponentNestingParity(mesh, topology), expected);
 
-  const std::size_t undone = ME::UndoFoldingMoves(mesh, topology, start, 1e-6, &reference);
+  const std::size_t undone = ME::detail::UndoFoldingMoves(mesh, topology, start, 1e-6, &reference);
   EXPECT_GT(undone, 0u);
-  EXPECT_EQ(ME::ComponentNestingParity(mesh, topology), expected);
-  EXPECT_TRUE(ME::FindSelfIntersections(mesh).empty());
+  EXPECT_EQ(ME::detail::ComponentNestingParity(mesh, topology), expected);
+  EXPECT_TRUE(ME::detail::FindSelfIntersections(mesh).empty());
   // Only the part of the sphere near the small one went back.
   std::size_t stillMoved = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -445,11 +445,11 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesRestoresASurfaceThatMovedPastASmal
 // falls below CollapsedComponentVolumeFraction of its volume before the first step.
 TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesKeepsAComponentFromShrinkingToASpeck)
 {
-  const Vec3                   center = ME::MakeVec3(10.0, 10.0, 10.0);
-  ME::IndexedTriangleMesh      mesh = ME::MakeGeodesicSphere(1, center, 1.0);
-  const ME::MeshTopology       topology = ME::BuildMeshTopology(mesh);
-  const ME::ComponentReference reference = ME::MakeComponentReference(mesh, topology);
-  unsigned int                 steps = 0;
+  const Vec3                           center = ME::MakeVec3(10.0, 10.0, 10.0);
+  ME::IndexedTriangleMesh              mesh = ME::MakeGeodesicSphere(1, center, 1.0);
+  const ME::MeshTopology               topology = ME::BuildMeshTopology(mesh);
+  const ME::detail::ComponentReference reference = ME::detail::MakeComponentReference(mesh, topology);
+  unsigned int                         steps = 0;
   for (; steps < 20; ++steps)
   {
     const std::vector<Vec3> start = mesh.points;
@@ -457,7 +457,7 @@ TEST(ScaleSpaceEdgeDetection, UndoFoldingMovesKeepsAComponentFromShrinkingToASpe
     {
       p = center + (p - center) * 0.5; // each step keeps 1/8 of the volume
     }
-    if (ME::UndoFoldingMoves(mesh, topology, start, 1e-6, &reference) > 0)
+    if (ME::detail::UndoFoldingMoves(mesh, topology, start, 1e-6, &reference) > 0)
     {
       EXPECT_EQ(mesh.points, start);
       break;
@@ -758,7 +758,7 @@ TEST(ScaleSpaceEdgeDetectionMeshFilter, DISABLED_BenchmarkGaussianMachinery)
 {
   const ImageType::Pointer      image = Chapter4SphereImage();
   const ME::IndexedTriangleMesh initial = InitialSphere();
-  const std::vector<double>     scales = ME::ScaleSpaceScales(3.0, 1.0, 4);
+  const std::vector<double>     scales = ME::detail::ScaleSpaceScales(3.0, 1.0, 4);
   using Clock = std::chrono::steady_clock;
 
   // The filter (scale-space build + searches + inaccuracy).
@@ -793,7 +793,7 @@ TEST(ScaleSpaceEdgeDetectionMeshFilter, DISABLED_BenchmarkGaussianMachinery)
   for (const auto & p : initial.points)
   {
     const Vec3   d = (p - center) * (1.0 / ME::Norm(p - center));
-    const double t = ME::SearchEdgeAlongLine(scales, 3.0, [&](std::size_t k, double offset) {
+    const double t = ME::detail::SearchEdgeAlongLine(scales, 3.0, [&](std::size_t k, double offset) {
       ImageType::PointType q;
       for (unsigned int i = 0; i < 3; ++i)
       {

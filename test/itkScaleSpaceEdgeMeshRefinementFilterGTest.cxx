@@ -201,14 +201,15 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, AnisotropicRotatedEllipsoid)
   const auto & steps = filter->GetSteps();
   ASSERT_GE(steps.size(), 3u);
   double initialDistance = 0.0;
-  for (const double d : ME::SignedDistancesToSurface(ME::MakeIndexedTriangleMesh(*nets->GetOutput()).points, *surface))
+  for (const double d :
+       ME::detail::SignedDistancesToSurface(ME::MakeIndexedTriangleMesh(*nets->GetOutput()).points, *surface))
   {
     initialDistance += std::abs(d);
   }
   initialDistance /= static_cast<double>(nets->GetOutput()->GetNumberOfPoints());
   double     finalDistance = 0.0;
   const auto finalPoints = ME::MakeIndexedTriangleMesh(*filter->GetOutput()).points;
-  for (const double d : ME::SignedDistancesToSurface(finalPoints, *surface))
+  for (const double d : ME::detail::SignedDistancesToSurface(finalPoints, *surface))
   {
     finalDistance += std::abs(d);
   }

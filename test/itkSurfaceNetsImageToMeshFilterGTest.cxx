@@ -359,7 +359,7 @@ template <typename TPixel>
 void
 CheckVoxelRange(const std::vector<double> & isoValues, const std::vector<TPixel> & voxels)
 {
-  using Range = ME::SurfaceNetsVoxelRange<TPixel>;
+  using Range = ME::detail::SurfaceNetsVoxelRange<TPixel>;
   for (double iso : isoValues)
   {
     const Range above = Range::FromIsoValue(iso, true);
@@ -402,8 +402,8 @@ TEST(SurfaceNetsRelaxation, ANodeOutsideItsCellStepsAlongTheTrilinearFieldOfTheC
   net.boxLower.push_back(ME::MakeVec3(1.0, 1.0, 1.0));
   net.boxUpper.push_back(ME::MakeVec3(3.0, 2.0, 2.0));
   net.neighborStart.assign(2, 0);
-  const ME::SurfaceNetsSampler<FloatImage> sampler(image.GetPointer(), 6.25, -1.0);
-  ME::SurfaceNetsRelaxationParameters      parameters;
+  const ME::detail::SurfaceNetsSampler<FloatImage> sampler(image.GetPointer(), 6.25, -1.0);
+  ME::detail::SurfaceNetsRelaxationParameters      parameters;
   parameters.kind = itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::Gradient;
   parameters.maximumNumberOfIterations = 1;
   parameters.centralDifferences = true;
@@ -414,17 +414,17 @@ TEST(SurfaceNetsRelaxation, ANodeOutsideItsCellStepsAlongTheTrilinearFieldOfTheC
   for (const bool keptCache : { false, true })
   {
     SCOPED_TRACE(keptCache);
-    ME::SurfaceNetsCellCache cache;
+    ME::detail::SurfaceNetsCellCache cache;
     if (keptCache)
     {
       // A cache made by an earlier call, with the node inside its own cell.
       net.positions[0] = ME::MakeVec3(1.5, 1.5, 1.5);
-      ME::RelaxSurfaceNet(net, &sampler, gradient, parameters, nullptr, &cache);
+      ME::detail::RelaxSurfaceNet(net, &sampler, gradient, parameters, nullptr, &cache);
       ASSERT_EQ(cache.entries.size(), 1u);
       EXPECT_EQ(cache.entries[0].corner[0], 1.0);
       net.positions[0] = ME::MakeVec3(2.3, 1.5, 1.5);
     }
-    ME::RelaxSurfaceNet(net, &sampler, gradient, parameters, nullptr, &cache);
+    ME::detail::RelaxSurfaceNet(net, &sampler, gradient, parameters, nullptr, &cache);
     EXPECT_NEAR(net.positions[0][0], 2.45, 1e-5);
     EXPECT_EQ(net.positions[0][1], 1.5);
     EXPECT_EQ(net.positions[0][2], 1.5);
@@ -532,15 +532,16 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
       }
     }
     // Inside below or above an iso-value (one bound), or in a band (two bounds, as a label).
-    const bool                       below = trial % 2 == 0;
-    const bool                       band = trial % 3 == 2;
-    ME::SurfaceNetsVoxelRange<float> range = ME::SurfaceNetsVoxelRange<float>::FromIsoValue(density, !below);
+    const bool                               below = trial % 2 == 0;
+    const bool                               band = trial % 3 == 2;
+    ME::detail::SurfaceNetsVoxelRange<float> range =
+      ME::detail::SurfaceNetsVoxelRange<float>::FromIsoValue(density, !below);
     if (band)
     {
       range = { static_cast<float>(density) - 0.25f, static_cast<float>(density) + 0.125f };
     }
     ME::SurfaceNet net;
-    const auto     stats = ME::ClassifySurfaceCells(image.GetPointer(), range, net, 1 + trial % 3);
+    const auto     stats = ME::detail::ClassifySurfaceCells(image.GetPointer(), range, net, 1 + trial % 3);
     auto           insideValue = [&](float v) {
       if (band)
       {
@@ -606,7 +607,7 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
     ASSERT_EQ(stats.foundNaN, firstNaN >= 0);
     // Without the extremes: the same cells, count and NaN, extremes left unset.
     ME::SurfaceNet plain;
-    const auto     lean = ME::ClassifySurfaceCells(image.GetPointer(), range, plain, 1 + trial % 3, false);
+    const auto     lean = ME::detail::ClassifySurfaceCells(image.GetPointer(), range, plain, 1 + trial % 3, false);
     ASSERT_EQ(plain.cells.size(), net.cells.size());
     for (std::size_t i = 0; i < net.cells.size(); ++i)
     {
@@ -616,8 +617,8 @@ TEST(SurfaceNetsImageToMeshFilter, ClassificationFindsExactlyTheMixedCells)
     }
     EXPECT_EQ(lean.insideVoxels, insideVoxels);
     EXPECT_EQ(lean.foundNaN, stats.foundNaN);
-    EXPECT_EQ(lean.minimum, ME::SurfaceNetsClassificationStatistics{}.minimum);
-    EXPECT_EQ(lean.maximum, ME::SurfaceNetsClassificationStatistics{}.maximum);
+    EXPECT_EQ(lean.minimum, ME::detail::SurfaceNetsClassificationStatistics{}.minimum);
+    EXPECT_EQ(lean.maximum, ME::detail::SurfaceNetsClassificationStatistics{}.maximum);
     if (firstNaN >= 0)
     {
       const std::int64_t index = (stats.nanVoxel[2] * size[1] + stats.nanVoxel[1]) * size[0] + stats.nanVoxel[0];
@@ -665,13 +666,13 @@ TEST(SurfaceNetsImageToMeshFilter, StructuredSelfIntersectionSearchFindsExactlyW
       image->GetBufferPointer()[i] = value(rng);
     }
     ME::SurfaceNet net;
-    ME::ClassifySurfaceCells(
-      image.GetPointer(), ME::SurfaceNetsVoxelRange<float>::FromIsoValue(density, false), net, 1);
+    ME::detail::ClassifySurfaceCells(
+      image.GetPointer(), ME::detail::SurfaceNetsVoxelRange<float>::FromIsoValue(density, false), net, 1);
     if (net.cells.empty())
     {
       continue;
     }
-    ME::BuildSurfaceNet(net, 0.01, 1);
+    ME::detail::BuildSurfaceNet(net, 0.01, 1);
     for (std::size_t i = 0; i < net.positions.size(); ++i)
     {
       for (unsigned int k = 0; k < 3; ++k)
@@ -685,16 +686,17 @@ TEST(SurfaceNetsImageToMeshFilter, StructuredSelfIntersectionSearchFindsExactlyW
     std::vector<ME::Vec3>             points;
     ME::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
     unsigned int                                       polygonSize = 3;
-    ME::MakeSurfaceNetFaces(net, origin, M, ME::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
+    ME::detail::MakeSurfaceNetFaces(
+      net, origin, M, ME::detail::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
     ME::IndexedTriangleMesh mesh;
-    mesh.points = ME::ToPhysical(net.positions, origin, M, rotate);
+    mesh.points = ME::detail::ToPhysical(net.positions, origin, M, rotate);
     for (const auto & p : polygons)
     {
       mesh.triangles.push_back({ p[0], p[1], p[2] });
     }
-    const auto                                           expected = ME::FindSelfIntersections(mesh);
+    const auto                                           expected = ME::detail::FindSelfIntersections(mesh);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> found;
-    ASSERT_TRUE(ME::FindSurfaceNetSelfIntersections(net, mesh, origin, M, rotate, nullptr, found));
+    ASSERT_TRUE(ME::detail::FindSurfaceNetSelfIntersections(net, mesh, origin, M, rotate, nullptr, found));
     ASSERT_EQ(found, expected);
     intersecting += expected.size();
     std::vector<std::uint32_t> changed;
@@ -705,11 +707,11 @@ TEST(SurfaceNetsImageToMeshFilter, StructuredSelfIntersectionSearchFindsExactlyW
         changed.push_back(f);
       }
     }
-    ASSERT_TRUE(ME::FindSurfaceNetSelfIntersections(net, mesh, origin, M, rotate, &changed, found));
-    ASSERT_EQ(found, ME::FindSelfIntersections(mesh, &changed));
+    ASSERT_TRUE(ME::detail::FindSurfaceNetSelfIntersections(net, mesh, origin, M, rotate, &changed, found));
+    ASSERT_EQ(found, ME::detail::FindSelfIntersections(mesh, &changed));
     // A node on a face of its cell: the argument fails, and the search says so.
     net.positions[0][0] = std::floor(net.positions[0][0]);
-    ASSERT_FALSE(ME::FindSurfaceNetSelfIntersections(net, mesh, origin, M, rotate, nullptr, found));
+    ASSERT_FALSE(ME::detail::FindSurfaceNetSelfIntersections(net, mesh, origin, M, rotate, nullptr, found));
     EXPECT_TRUE(found.empty());
   }
   EXPECT_GT(intersecting, 100u) << "the random nets should cross themselves often";
@@ -739,12 +741,13 @@ TEST(SurfaceNetsImageToMeshFilter, SelfIntersectionRemovalHandsOutTheFacesOfTheF
       image->GetBufferPointer()[i] = value(rng);
     }
     ME::SurfaceNet net;
-    ME::ClassifySurfaceCells(image.GetPointer(), ME::SurfaceNetsVoxelRange<float>::FromIsoValue(0.5, false), net, 1);
+    ME::detail::ClassifySurfaceCells(
+      image.GetPointer(), ME::detail::SurfaceNetsVoxelRange<float>::FromIsoValue(0.5, false), net, 1);
     if (net.cells.empty())
     {
       continue;
     }
-    ME::BuildSurfaceNet(net, 0.01, 1);
+    ME::detail::BuildSurfaceNet(net, 0.01, 1);
     const ME::LargeBlockVector<ME::Vec3> initial = net.positions;
     for (std::size_t i = 0; i < net.positions.size(); ++i)
     {
@@ -753,25 +756,27 @@ TEST(SurfaceNetsImageToMeshFilter, SelfIntersectionRemovalHandsOutTheFacesOfTheF
         net.positions[i][k] = net.boxLower[i][k] + unit(rng) * (net.boxUpper[i][k] - net.boxLower[i][k]);
       }
     }
-    const bool          roundToFloat = trial % 2 == 1;
-    const ME::QuadSplit split = trial % 4 < 2 ? ME::QuadSplit::ShortestDiagonal : ME::QuadSplit::Delaunay;
+    const bool                  roundToFloat = trial % 2 == 1;
+    const ME::detail::QuadSplit split =
+      trial % 4 < 2 ? ME::detail::QuadSplit::ShortestDiagonal : ME::detail::QuadSplit::Delaunay;
     ME::LargeBlockVector<std::array<std::uint32_t, 4>> faces;
-    movedBack += ME::RemoveSurfaceNetSelfIntersections(net, initial, origin, M, split, roundToFloat, &faces);
+    movedBack += ME::detail::RemoveSurfaceNetSelfIntersections(net, initial, origin, M, split, roundToFloat, &faces);
     std::vector<ME::Vec3>                              points;
     ME::LargeBlockVector<std::array<std::uint32_t, 4>> expected;
     unsigned int                                       polygonSize = 0;
-    ME::MakeSurfaceNetFaces(net, origin, M, split, points, expected, polygonSize);
+    ME::detail::MakeSurfaceNetFaces(net, origin, M, split, points, expected, polygonSize);
     ASSERT_EQ(polygonSize, 3u);
     ASSERT_EQ(faces, expected);
     ME::IndexedTriangleMesh mesh;
-    mesh.points = ME::ToPhysical(net.positions, origin, M, roundToFloat);
+    mesh.points = ME::detail::ToPhysical(net.positions, origin, M, roundToFloat);
     for (const auto & f : faces)
     {
       mesh.triangles.push_back({ f[0], f[1], f[2] });
     }
-    EXPECT_TRUE(ME::FindSelfIntersections(mesh).empty());
+    EXPECT_TRUE(ME::detail::FindSelfIntersections(mesh).empty());
     // Quads are not what the check tests: nothing is handed out.
-    ME::RemoveSurfaceNetSelfIntersections(net, initial, origin, M, ME::QuadSplit::KeepQuads, roundToFloat, &faces);
+    ME::detail::RemoveSurfaceNetSelfIntersections(
+      net, initial, origin, M, ME::detail::QuadSplit::KeepQuads, roundToFloat, &faces);
     EXPECT_TRUE(faces.empty());
   }
   EXPECT_GT(movedBack, 20u) << "the random nets should need nodes moved back";
@@ -1094,8 +1099,8 @@ TEST(SurfaceNetsImageToMeshFilter, DynamicMeshTraitsGetTheSameCells)
 TEST(SurfaceNetsImageToMeshFilter, MeshCellsShareOneBlockThatGoesWithTheLastCell)
 {
   using CellType = MeshType::CellType;
-  using Triangle = ME::BlockAllocatedCell<itk::TriangleCell<CellType>>;
-  using Quad = ME::BlockAllocatedCell<itk::QuadrilateralCell<CellType>>;
+  using Triangle = ME::detail::BlockAllocatedCell<itk::TriangleCell<CellType>>;
+  using Quad = ME::detail::BlockAllocatedCell<itk::QuadrilateralCell<CellType>>;
   const std::size_t trianglesBefore = Triangle::GetNumberOfBlocks();
   const std::size_t quadsBefore = Quad::GetNumberOfBlocks();
   const Phantom     p = MakePhantom(ME::PhantomShape::Ellipsoid);
@@ -1179,7 +1184,7 @@ std::size_t              ThrowingTriangle::throwAt = 0;
 
 TEST(SurfaceNetsImageToMeshFilter, CellBlockLeavesNothingWhenAConstructorThrows)
 {
-  using Cell = ME::BlockAllocatedCell<ThrowingTriangle>;
+  using Cell = ME::detail::BlockAllocatedCell<ThrowingTriangle>;
   const std::size_t                 blocksBefore = Cell::GetNumberOfBlocks();
   std::vector<MeshType::CellType *> cells(50000, nullptr);
 
@@ -1273,7 +1278,7 @@ TEST(SurfaceNetsImageToMeshFilter, GaussianDerivativeGradientsAreExactOnQuadrati
     cell.z = c[2];
     net.cells.push_back(cell);
   }
-  const ME::SurfaceNetsGaussianGradient<FloatImage> gaussian(image, net, 1.5);
+  const ME::detail::SurfaceNetsGaussianGradient<FloatImage> gaussian(image, net, 1.5);
   for (std::uint32_t k = 0; k < net.cells.size(); ++k)
   {
     const auto & c = net.cells[k];
