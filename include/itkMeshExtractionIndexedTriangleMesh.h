@@ -28,7 +28,6 @@
 
 #include <array>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 namespace itk
@@ -100,16 +99,7 @@ struct MeshTopology
 
   /** The other triangle on the side of a manifold edge, or -1 (max uint32). */
   std::uint32_t
-  Neighbor(std::uint32_t triangle, unsigned int side) const
-  {
-    const Edge & e = edges[triangleEdges[triangle][side]];
-    if (e.numberOfIncidences != 2)
-    {
-      return std::numeric_limits<std::uint32_t>::max();
-    }
-    const Incidence & i0 = incidences[e.firstIncidence];
-    return i0.triangle == triangle ? incidences[e.firstIncidence + 1].triangle : i0.triangle;
-  }
+  Neighbor(std::uint32_t triangle, unsigned int side) const;
 };
 
 /** Build the topology of an indexed triangle mesh (O(F log F), deterministic). */

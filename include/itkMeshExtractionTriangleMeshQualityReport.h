@@ -99,21 +99,15 @@ struct MeshExtraction_EXPORT TriangleMeshQualityReport
   double                                               totalArea{ 0.0 };
   double enclosedVolume{ 0.0 }; ///< signed (divergence theorem); meaningful for closed surfaces
 
+  /** No boundary edge, and at least one triangle. */
   bool
-  IsClosed() const
-  {
-    return boundaryEdges == 0 && numberOfTriangles > 0;
-  }
+  IsClosed() const;
+  /** No non-manifold edge or vertex. */
   bool
-  IsManifold() const
-  {
-    return nonManifoldEdges == 0 && nonManifoldVertices == 0;
-  }
+  IsManifold() const;
+  /** No two triangles run an edge the same way. */
   bool
-  IsConsistentlyOriented() const
-  {
-    return inconsistentlyOrientedEdges == 0;
-  }
+  IsConsistentlyOriented() const;
   /** Closed, 2-manifold, consistently and outward oriented, with no degenerate,
    * inverted or self-intersecting triangles (checks that were not run do not count). */
   bool

@@ -49,6 +49,9 @@ namespace detail
  *    move is taken whole, or halved until no incident triangle flips or degenerates,
  *    or rejected.
  *
+ * They are inline here rather than in src/: the smoothing filters' template loops call
+ * them for every vertex of every iteration.
+ *
  * \ingroup MeshExtraction
  */
 

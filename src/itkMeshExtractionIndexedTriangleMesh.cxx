@@ -18,6 +18,7 @@
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 namespace itk
@@ -369,6 +370,18 @@ PointIdentifierMap::ThrowMissingPoint(IdentifierType id, IdentifierType cellId)
                                                    << ", which the mesh does not have.");
 }
 } // namespace detail
+
+std::uint32_t
+MeshTopology::Neighbor(std::uint32_t triangle, unsigned int side) const
+{
+  const Edge & e = edges[triangleEdges[triangle][side]];
+  if (e.numberOfIncidences != 2)
+  {
+    return std::numeric_limits<std::uint32_t>::max();
+  }
+  const Incidence & i0 = incidences[e.firstIncidence];
+  return i0.triangle == triangle ? incidences[e.firstIncidence + 1].triangle : i0.triangle;
+}
 
 MeshTopology
 BuildMeshTopology(const IndexedTriangleMesh & mesh)

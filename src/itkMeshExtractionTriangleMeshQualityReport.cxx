@@ -55,6 +55,24 @@ PrintStatisticsJSON(std::ostream & os, const ValueStatistics & s)
 } // namespace
 
 bool
+TriangleMeshQualityReport::IsClosed() const
+{
+  return boundaryEdges == 0 && numberOfTriangles > 0;
+}
+
+bool
+TriangleMeshQualityReport::IsManifold() const
+{
+  return nonManifoldEdges == 0 && nonManifoldVertices == 0;
+}
+
+bool
+TriangleMeshQualityReport::IsConsistentlyOriented() const
+{
+  return inconsistentlyOrientedEdges == 0;
+}
+
+bool
 TriangleMeshQualityReport::IsValidClosedSurface() const
 {
   return IsClosed() && IsManifold() && IsConsistentlyOriented() && degenerateTriangles == 0 &&
