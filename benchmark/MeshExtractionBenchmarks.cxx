@@ -37,8 +37,8 @@
 
 #include "itkImage.h"
 #include "itkMesh.h"
-#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshSurfaceDistanceCalculator.h"

@@ -20,8 +20,8 @@
 #define itkMeshExtractionSelfIntersections_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -19,8 +19,8 @@
 #ifndef itkMeshExtractionSurfaceNetsRelaxation_h
 #define itkMeshExtractionSurfaceNetsRelaxation_h
 
-#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionGaussianScaleSpace.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSurfaceNets.h"

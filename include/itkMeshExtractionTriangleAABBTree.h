@@ -20,8 +20,8 @@
 #define itkMeshExtractionTriangleAABBTree_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 
 #include <cstdint>
 #include <limits>

@@ -20,8 +20,8 @@
 #define itkMeshExtractionValidityGuard_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionSurfaceNets.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMeshExtractionVertexSmoothing.h"
