@@ -110,7 +110,6 @@ public:
 
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
-  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
   using CoefficientsComputation = MatrixCoefficients<OutputMeshType>;
 
   using SmoothingWeightsEnum = MeshExtractionEnums::SmoothingWeights;
@@ -197,6 +196,9 @@ public:
   itkGetConstMacro(NumberOfMovableVertices, SizeValueType);
 
 protected:
+  /** The per-vertex smoother the filter runs (internal: itk::MeshExtraction::detail). */
+  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
+
   LaplacianSmoothingQuadEdgeMeshFilter() = default;
   ~LaplacianSmoothingQuadEdgeMeshFilter() override = default;
   void

@@ -100,7 +100,6 @@ public:
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
   using ImageType = TImage;
-  using DetectorType = MeshExtraction::detail::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
   using EdgeSearchDirectionEnum = MeshExtractionEnums::EdgeSearchDirection;
 
   static_assert(OutputMeshType::PointDimension == 3, "ScaleSpaceEdgeDetectionMeshFilter works on 3-D surface meshes");
@@ -220,6 +219,9 @@ public:
   }
 
 protected:
+  /** The edge detector the filter runs (internal: itk::MeshExtraction::detail). */
+  using DetectorType = MeshExtraction::detail::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
+
   ScaleSpaceEdgeDetectionMeshFilter();
   ~ScaleSpaceEdgeDetectionMeshFilter() override = default;
   void

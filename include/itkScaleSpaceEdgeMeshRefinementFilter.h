@@ -117,8 +117,6 @@ public:
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
   using ImageType = TImage;
-  using DetectorType = MeshExtraction::detail::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
-  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
   using EdgeSwapFilterType = EdgeSwapQuadEdgeMeshFilter<OutputMeshType, OutputMeshType>;
   using StepType = MeshExtraction::ScaleSpaceRefinementStep;
   using StepsType = std::vector<StepType>;
@@ -204,6 +202,11 @@ public:
   }
 
 protected:
+  /** The edge detector and the per-vertex smoother the protocol runs (internal:
+   * itk::MeshExtraction::detail). */
+  using DetectorType = MeshExtraction::detail::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
+  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
+
   ScaleSpaceEdgeMeshRefinementFilter();
   ~ScaleSpaceEdgeMeshRefinementFilter() override = default;
   void
