@@ -173,6 +173,27 @@ MakeSurfaceNetFaces(const SurfaceNet &                               net,
 // FindSurfaceNetSelfIntersections and RemoveSurfaceNetSelfIntersections, is part of the
 // validity guard: itkMeshExtractionValidityGuard.h.
 
+/** What RemoveSmallComponents removed, and the nodes left (new index -> old index). */
+struct SmallComponentRemoval
+{
+  std::vector<std::uint32_t> keptPoints;              ///< empty when nothing was removed
+  std::size_t                numberOfComponents{ 0 }; ///< components removed
+  std::size_t                numberOfFaces{ 0 };      ///< faces removed
+  double                     largestVolume{ 0.0 };    ///< the largest component's volume (magnitude)
+};
+
+/** Removes from `polygons` (triangles, or quads if `polygonSize` is 4) every component
+ * (faces joined by shared nodes) whose enclosed volume, in the units of `points`
+ * cubed, is below `minimumVolume` in magnitude: an island outside the object and a
+ * cavity inside it alike. The faces left are renumbered onto the nodes they use, in
+ * the order of their old indices (SmallComponentRemoval::keptPoints). Nothing changes
+ * when no component is that small. */
+MeshExtraction_EXPORT SmallComponentRemoval
+RemoveSmallComponents(LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                      unsigned int                                     polygonSize,
+                      const std::vector<Vec3> &                        points,
+                      double                                           minimumVolume);
+
 } // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -71,7 +71,9 @@ struct SurfaceNetsClassificationStatistics;
  *    FormFaces, MakeSurfaceNetFaces;
  * 6. the high-quality mode (HighQuality): rounds of edge swaps and relaxation on the
  *    triangles — RunHighQualityStage, RunHighQualityMode, MeshExtraction::detail::SurfaceNetsHighQuality;
- * 7. the output mesh — MakeOutputMesh.
+ * 7. drop small components (MinimumComponentVolume, off by default) —
+ *    RemoveSmallComponents;
+ * 8. the output mesh — MakeOutputMesh.
  *
  * Guarantees: the output is closed, 2-manifold and consistently oriented with
  * normals pointing out of the object, for every configuration. A cell where the
@@ -250,6 +252,13 @@ public:
   itkSetMacro(PreventSelfIntersections, bool);
   itkGetConstMacro(PreventSelfIntersections, bool);
   itkBooleanMacro(PreventSelfIntersections);
+  /** Drop every closed component whose enclosed volume (mm^3, in magnitude) is below
+   * this: the noise islands of a real scan, and likewise small cavities inside the
+   * object. 0 (the default) keeps every component. Components are measured on the
+   * final surface, so the rest of the mesh is exactly what it is without the option.
+   * See GetNumberOfComponentsRemoved. */
+  itkSetMacro(MinimumComponentVolume, double);
+  itkGetConstMacro(MinimumComponentVolume, double);
   /** Distance (voxels) nodes keep from their cell's faces (default 0.01). */
   itkSetMacro(CellMargin, double);
   itkGetConstMacro(CellMargin, double);
@@ -282,6 +291,9 @@ public:
   itkGetConstMacro(NumberOfNodes, SizeValueType);
   itkGetConstMacro(NumberOfSplitCells, SizeValueType);
   itkGetConstMacro(NumberOfNodesMovedBack, SizeValueType);
+  /** After Update(): components and faces dropped by MinimumComponentVolume. */
+  itkGetConstMacro(NumberOfComponentsRemoved, SizeValueType);
+  itkGetConstMacro(NumberOfFacesRemoved, SizeValueType);
   /** After Update() in high-quality mode: swaps kept, and high-quality rounds run
    * (those that swapped and relaxed; the last relaxation not counted). */
   itkGetConstMacro(NumberOfSwaps, SizeValueType);
@@ -322,13 +334,15 @@ protected:
   void
   RunHighQualityMode(std::vector<MeshExtraction::TriangleIndices> & triangles,
                      MeshExtraction::detail::SurfaceNetsCellCache * cellCache);
-  /** Stage 7: the faces (node indices) with the nodes in physical space, into the
+  /** Stage 8: the faces (node indices) with the nodes in physical space, into the
    * output mesh. `points`: the nodes' physical points if already made (the face
-   * split made them), else null. */
+   * split made them), else null. `keptPoints`: the nodes the faces use, new index ->
+   * old, when stage 7 removed some (the faces are numbered on them), else null. */
   void
   MakeOutputMesh(const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
                  unsigned int                                                           polygonSize,
-                 const MeshExtraction::Vec3 *                                           points);
+                 const MeshExtraction::Vec3 *                                           points,
+                 const std::vector<std::uint32_t> *                                     keptPoints = nullptr);
   /** The index-to-physical matrix (direction * spacing), the physical point of the
    * buffer's first voxel, and the face split of the Triangulation setting. */
   void
@@ -352,7 +366,8 @@ private:
     unsigned int                                                   polygonSize{ 3 };
     std::vector<MeshExtraction::Vec3>                              checkedPoints; ///< stage 4's
     MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>         points;        ///< stage 5's
-    bool movedNodes{ false }; ///< the high-quality stage moved the nodes after the faces were made
+    bool movedNodes{ false };              ///< the high-quality stage moved the nodes after the faces were made
+    std::vector<std::uint32_t> keptPoints; ///< stage 7's: the nodes left (new -> old), empty if all are
 
     /** The points of the final positions, or null where none were made. */
     const MeshExtraction::Vec3 *
@@ -407,9 +422,12 @@ private:
   /** Stage 6 (HighQuality): the high-quality rounds on the triangles. */
   void
   RunHighQualityStage(Faces & faces, MeshExtraction::detail::SurfaceNetsCellCache & cellCache);
-  /** Stage 7's parts: the points, and the cells of an itk::Mesh. */
+  /** Stage 7 (MinimumComponentVolume): small components out of the faces. */
   void
-  MakeOutputPoints(const MeshExtraction::Vec3 * points);
+  RemoveSmallComponents(Faces & faces);
+  /** Stage 8's parts: the points, and the cells of an itk::Mesh. */
+  void
+  MakeOutputPoints(const MeshExtraction::Vec3 * points, const std::vector<std::uint32_t> * keptPoints);
   void
   MakeOutputCells(const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
                   unsigned int                                                           polygonSize);
@@ -454,6 +472,7 @@ private:
   double            m_ConvergedSwapFraction{ 0.001 };
   unsigned int      m_HighQualityIterations{ 4 };
   double            m_HighQualityCellDilation{ 0.5 };
+  double            m_MinimumComponentVolume{ 0.0 };
   bool              m_ResampleToIsotropicVoxels{ false };
 
   typename InputImageType::ConstPointer m_SampledInput;      // while GenerateData runs
@@ -464,6 +483,8 @@ private:
   SizeValueType m_NumberOfNodes{ 0 };
   SizeValueType m_NumberOfSplitCells{ 0 };
   SizeValueType m_NumberOfNodesMovedBack{ 0 };
+  SizeValueType m_NumberOfComponentsRemoved{ 0 };
+  SizeValueType m_NumberOfFacesRemoved{ 0 };
   SizeValueType m_NumberOfSwaps{ 0 };
   unsigned int  m_NumberOfRoundsPerformed{ 0 };
 

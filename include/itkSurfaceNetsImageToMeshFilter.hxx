@@ -80,6 +80,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
   {
     itkExceptionMacro("ConvergedSwapFraction must be in [0, 1], got " << m_ConvergedSwapFraction << '.');
   }
+  if (!(m_MinimumComponentVolume >= 0.0 && std::isfinite(m_MinimumComponentVolume)))
+  {
+    itkExceptionMacro("MinimumComponentVolume must be a finite volume >= 0 mm^3, got " << m_MinimumComponentVolume
+                                                                                       << '.');
+  }
   if (!(m_CellMargin >= 0.0 && m_CellMargin <= 0.25))
   {
     itkExceptionMacro("CellMargin must be in [0, 0.25] voxels, got " << m_CellMargin << '.');
@@ -438,11 +443,12 @@ void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputMesh(
   const MeshExtraction::LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
   unsigned int                                                           polygonSize,
-  const MeshExtraction::Vec3 *                                           points)
+  const MeshExtraction::Vec3 *                                           points,
+  const std::vector<std::uint32_t> *                                     keptPoints)
 {
   OutputMeshType * output = this->GetOutput();
   output->Initialize();
-  this->MakeOutputPoints(points);
+  this->MakeOutputPoints(points, keptPoints);
   if constexpr (MeshExtraction::detail::IsQuadEdgeMesh<OutputMeshType>::value)
   {
     typename OutputMeshType::PointIdList ids(polygonSize);
@@ -467,21 +473,23 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputPoints(
-  const MeshExtraction::Vec3 * points)
+  const MeshExtraction::Vec3 *       points,
+  const std::vector<std::uint32_t> * keptPoints)
 {
   using namespace MeshExtraction;
   using namespace MeshExtraction::detail;
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
-  const std::size_t numberOfPoints = m_Net.positions.size();
+  const std::size_t numberOfPoints = keptPoints != nullptr ? keptPoints->size() : m_Net.positions.size();
   OutputMeshType *  output = this->GetOutput();
   using PointType = typename OutputMeshType::PointType;
   using CoordinateType = typename PointType::ValueType;
   // Each node's physical point: the face split's, or made as it is stored (no array
   // of them in between).
-  auto toPoint = [&](std::size_t i) {
-    Vec3 physical;
+  auto toPoint = [&](std::size_t n) {
+    const std::size_t i = keptPoints != nullptr ? (*keptPoints)[n] : n;
+    Vec3              physical;
     if (points != nullptr)
     {
       physical = points[i];
@@ -622,7 +630,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   this->FormFaces(faces);                      // 5
   this->RunHighQualityStage(faces, cellCache); // 6
   this->UpdateProgress(0.85f);
-  this->MakeOutputMesh(faces.polygons, faces.polygonSize, faces.PhysicalPoints()); // 7
+  this->RemoveSmallComponents(faces); // 7
+  this->MakeOutputMesh(faces.polygons,
+                       faces.polygonSize,
+                       faces.PhysicalPoints(),
+                       faces.keptPoints.empty() ? nullptr : &faces.keptPoints); // 8
   this->ReleaseResampledInputs();
   this->UpdateProgress(1.0f);
 }
@@ -748,6 +760,44 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSmallComponents(Faces & faces)
+{
+  m_NumberOfComponentsRemoved = 0;
+  m_NumberOfFacesRemoved = 0;
+  faces.keptPoints.clear();
+  if (!(m_MinimumComponentVolume > 0.0))
+  {
+    return;
+  }
+  // The volumes are those of the output: the nodes in physical space, as written.
+  const std::size_t                 numberOfNodes = m_Net.positions.size();
+  std::vector<MeshExtraction::Vec3> physical(numberOfNodes);
+  if (const MeshExtraction::Vec3 * made = faces.PhysicalPoints())
+  {
+    std::copy(made, made + numberOfNodes, physical.begin());
+  }
+  else
+  {
+    Matrix<double, 3, 3> M;
+    MeshExtraction::Vec3 first;
+    this->GetGeometry(M, first);
+    MeshExtraction::detail::ToPhysical(m_Net.positions.data(), numberOfNodes, first, M, RoundsToFloat, physical.data());
+  }
+  auto removal = MeshExtraction::detail::RemoveSmallComponents(
+    faces.polygons, faces.polygonSize, physical, m_MinimumComponentVolume);
+  if (removal.numberOfComponents > 0 && faces.polygons.empty())
+  {
+    itkExceptionMacro("MinimumComponentVolume "
+                      << m_MinimumComponentVolume << " mm^3 removes every component: the largest of the "
+                      << removal.numberOfComponents << " encloses " << removal.largestVolume << " mm^3.");
+  }
+  m_NumberOfComponentsRemoved = removal.numberOfComponents;
+  m_NumberOfFacesRemoved = removal.numberOfFaces;
+  faces.keptPoints = std::move(removal.keptPoints);
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ReleaseResampledInputs()
 {
   m_SampledInput = nullptr;
@@ -778,10 +828,13 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "NumberOfHighQualityRounds: " << m_NumberOfHighQualityRounds << '\n';
   os << indent << "HighQualityIterations: " << m_HighQualityIterations << '\n';
   os << indent << "HighQualityCellDilation: " << m_HighQualityCellDilation << '\n';
+  os << indent << "MinimumComponentVolume: " << m_MinimumComponentVolume << '\n';
   os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
   os << indent << "ConvergedSwapFraction: " << m_ConvergedSwapFraction << '\n';
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << '\n';
   os << indent << "NumberOfRoundsPerformed: " << m_NumberOfRoundsPerformed << '\n';
+  os << indent << "NumberOfComponentsRemoved: " << m_NumberOfComponentsRemoved << '\n';
+  os << indent << "NumberOfFacesRemoved: " << m_NumberOfFacesRemoved << '\n';
   os << indent << "NumberOfIterations: " << m_NumberOfIterations << '\n';
   os << indent << "LastMaximumRelocation: " << m_LastMaximumRelocation << '\n';
   os << indent << "NumberOfNodes: " << m_NumberOfNodes << '\n';

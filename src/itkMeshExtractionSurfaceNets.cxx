@@ -22,6 +22,7 @@
 #include "itkMeshExtractionQualityAnalysis.h"
 
 #include "itkMeshExtractionTriangleAABBTree.h"
+#include "itkMeshExtractionValidityGuard.h"
 #include "vnl/vnl_det.h"
 #include "vnl/vnl_inverse.h"
 
@@ -839,6 +840,79 @@ ToPhysical(const Vec3 *                 index,
     }
     physical[i] = p;
   }
+}
+
+namespace
+{
+/** The polygons as triangles (a quad as two), for the volumes of their components. */
+std::vector<TriangleIndices>
+PolygonsAsTriangles(const LargeBlockVector<std::array<std::uint32_t, 4>> & polygons, unsigned int polygonSize)
+{
+  std::vector<TriangleIndices> triangles;
+  triangles.reserve(polygons.size() * (polygonSize - 2));
+  for (const auto & q : polygons)
+  {
+    triangles.push_back({ { q[0], q[1], q[2] } });
+    if (polygonSize == 4)
+    {
+      triangles.push_back({ { q[0], q[2], q[3] } });
+    }
+  }
+  return triangles;
+}
+
+/** ComponentVolumes::vertexComponent of a node in no face. */
+constexpr std::uint32_t NoComponent = std::numeric_limits<std::uint32_t>::max();
+} // namespace
+
+SmallComponentRemoval
+RemoveSmallComponents(LargeBlockVector<std::array<std::uint32_t, 4>> & polygons,
+                      unsigned int                                     polygonSize,
+                      const std::vector<Vec3> &                        points,
+                      double                                           minimumVolume)
+{
+  SmallComponentRemoval removal;
+  ComponentVolumes      volumes;
+  volumes.Initialize(PolygonsAsTriangles(polygons, polygonSize), points);
+  // ComponentVolumes keeps 6 x the signed volume of each component.
+  std::vector<bool> removed(volumes.reference.size());
+  for (std::size_t c = 0; c < removed.size(); ++c)
+  {
+    removed[c] = std::abs(volumes.reference[c]) < 6.0 * minimumVolume;
+    removal.numberOfComponents += removed[c] ? 1 : 0;
+    removal.largestVolume = std::max(removal.largestVolume, std::abs(volumes.reference[c]) / 6.0);
+  }
+  if (removal.numberOfComponents == 0)
+  {
+    return removal;
+  }
+  std::vector<std::uint32_t> newIndex(points.size(), NoComponent);
+  for (std::size_t v = 0; v < points.size(); ++v)
+  {
+    const std::uint32_t c = volumes.vertexComponent[v];
+    if (c != NoComponent && !removed[c])
+    {
+      newIndex[v] = static_cast<std::uint32_t>(removal.keptPoints.size());
+      removal.keptPoints.push_back(static_cast<std::uint32_t>(v));
+    }
+  }
+  std::size_t kept = 0;
+  for (const auto & q : polygons)
+  {
+    if (newIndex[q[0]] == NoComponent)
+    {
+      continue;
+    }
+    std::array<std::uint32_t, 4> renumbered{};
+    for (unsigned int k = 0; k < polygonSize; ++k)
+    {
+      renumbered[k] = newIndex[q[k]];
+    }
+    polygons[kept++] = renumbered;
+  }
+  removal.numberOfFaces = polygons.size() - kept;
+  polygons.resize(kept);
+  return removal;
 }
 
 } // namespace detail

@@ -27,8 +27,10 @@
 #include "gtest/gtest.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -1107,4 +1109,90 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityIsIdenticalForOneAndManyThreads)
   const auto many = run(5);
   EXPECT_EQ(one.triangles, many.triangles);
   EXPECT_EQ(one.points, many.points);
+}
+
+namespace
+{
+/** A ball of radius 10 voxels with a cavity of radius 2.5 inside, and an island of
+ * radius 2 beside it, as a distance-like greyscale image (inside above 0) on 2 mm voxels. */
+FloatImage::Pointer
+BallWithCavityAndIsland()
+{
+  auto image = MakeImage<FloatImage>(36, 28, 28);
+  image->SetSpacing(2.0);
+  for (itk::ImageRegionIteratorWithIndex<FloatImage> it(image, image->GetBufferedRegion()); !it.IsAtEnd(); ++it)
+  {
+    const auto   i = it.GetIndex();
+    const double ball = 10.0 - std::hypot(i[0] - 13.0, i[1] - 13.5, i[2] - 13.5);
+    const double cavity = std::hypot(i[0] - 15.5, i[1] - 13.5, i[2] - 13.5) - 2.5;
+    const double island = 2.0 - std::hypot(i[0] - 30.0, i[1] - 13.5, i[2] - 13.5);
+    it.Set(static_cast<float>(std::max(std::min(ball, cavity), island)));
+  }
+  return image;
+}
+} // namespace
+
+TEST(SurfaceNetsImageToMeshFilter, MinimumComponentVolumeDropsIslandsAndCavitiesAndKeepsTheRestExactly)
+{
+  const auto image = BallWithCavityAndIsland();
+  for (const bool highQuality : { false, true })
+  {
+    auto all = itk::SurfaceNetsImageToMeshFilter<FloatImage, QEMeshType>::New();
+    all->SetInput(image);
+    all->SetIsoValue(0.0);
+    all->SetHighQuality(highQuality);
+    all->Update();
+    const auto before = Measure(all->GetOutput());
+    ASSERT_TRUE(before.IsValidClosedSurface()) << Text(before);
+    ASSERT_EQ(before.connectedComponents, 3);
+    EXPECT_EQ(all->GetNumberOfComponentsRemoved(), 0u);
+
+    // The island (4/3 pi 4^3 mm^3, about 268) and the cavity (about 524 mm^3) are below
+    // 2000 mm^3; the ball (about 33,500 mm^3) is not.
+    auto big = itk::SurfaceNetsImageToMeshFilter<FloatImage, QEMeshType>::New();
+    big->SetInput(image);
+    big->SetIsoValue(0.0);
+    big->SetHighQuality(highQuality);
+    big->SetMinimumComponentVolume(2000.0);
+    big->Update();
+    const auto after = Measure(big->GetOutput());
+    ASSERT_TRUE(after.IsValidClosedSurface()) << Text(after);
+    EXPECT_EQ(after.connectedComponents, 1);
+    EXPECT_EQ(after.eulerCharacteristic, 2);
+    EXPECT_EQ(after.numberOfReferencedPoints, after.numberOfPoints) << "no point of a removed component is left";
+    EXPECT_EQ(big->GetNumberOfComponentsRemoved(), 2u);
+    EXPECT_EQ(after.numberOfTriangles + big->GetNumberOfFacesRemoved(), before.numberOfTriangles);
+
+    // The ball's own surface is the one made without the option: the same points, in order.
+    const auto * kept = big->GetOutput();
+    const auto * full = all->GetOutput();
+    std::size_t  matched = 0;
+    for (QEMeshType::PointIdentifier i = 0, j = 0; i < kept->GetNumberOfPoints() && j < full->GetNumberOfPoints(); ++j)
+    {
+      if (kept->GetPoint(i) == full->GetPoint(j))
+      {
+        ++matched;
+        ++i;
+      }
+    }
+    EXPECT_EQ(matched, kept->GetNumberOfPoints()) << "high quality " << highQuality;
+
+    // Only the island: between the island's and the cavity's volumes.
+    big->SetMinimumComponentVolume(400.0);
+    big->Update();
+    const auto islandGone = Measure(big->GetOutput());
+    ASSERT_TRUE(islandGone.IsValidClosedSurface());
+    EXPECT_EQ(islandGone.connectedComponents, 2);
+    EXPECT_EQ(big->GetNumberOfComponentsRemoved(), 1u);
+  }
+
+  auto bad = itk::SurfaceNetsImageToMeshFilter<FloatImage, QEMeshType>::New();
+  bad->SetInput(image);
+  // Larger than the ball: nothing would be left, which is an error, not an empty mesh.
+  for (const double volume :
+       { -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e6 })
+  {
+    bad->SetMinimumComponentVolume(volume);
+    EXPECT_THROW(bad->Update(), itk::ExceptionObject) << volume;
+  }
 }

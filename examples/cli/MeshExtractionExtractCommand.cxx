@@ -22,6 +22,7 @@
 #include "itkImplicitSurfaceImageSource.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 
@@ -41,7 +42,8 @@ struct ExtractSettings
   // The tool's own.
   bool         byLabel{ false };
   std::string  labelImage;
-  unsigned int threads{ 0 }; // 0: the filter's default number of work units
+  unsigned int threads{ 0 };                  // 0: the filter's default number of work units
+  double       minimumComponentVoxels{ 0.0 }; // --min-component-voxels: in the input's voxel volumes
   // The filter's (ExtractDefaults sets them).
   double                          isoValue{};
   bool                            insideAbove{};
@@ -56,6 +58,7 @@ struct ExtractSettings
   double                          convergedSwaps{};
   double                          cellDilation{};
   bool                            isotropic{};
+  double                          minimumComponentVolume{};
 };
 
 /** The settings of a default-constructed SurfaceNetsImageToMeshFilter (the pixel type
@@ -78,6 +81,7 @@ ExtractDefaults()
   s.convergedSwaps = filter->GetConvergedSwapFraction();
   s.cellDilation = filter->GetHighQualityCellDilation();
   s.isotropic = filter->GetResampleToIsotropicVoxels();
+  s.minimumComponentVolume = filter->GetMinimumComponentVolume();
   return s;
 }
 
@@ -140,6 +144,13 @@ ConfigureFilter(TFilter * filter, const ExtractSettings & s)
   filter->SetConvergedSwapFraction(s.convergedSwaps);
   filter->SetHighQualityCellDilation(s.cellDilation);
   filter->SetResampleToIsotropicVoxels(s.isotropic);
+  double minimumVolume = s.minimumComponentVolume;
+  if (s.minimumComponentVoxels > 0.0)
+  {
+    const auto spacing = filter->GetInput()->GetSpacing();
+    minimumVolume = s.minimumComponentVoxels * spacing[0] * spacing[1] * spacing[2];
+  }
+  filter->SetMinimumComponentVolume(minimumVolume);
   if (s.threads > 0)
   {
     filter->SetNumberOfWorkUnits(s.threads);
@@ -174,6 +185,12 @@ PrintFilterSummary(const TFilter * filter, const ExtractSettings & s, const Stop
   {
     std::cerr << ", " << filter->GetNumberOfSwaps() << " swaps in " << filter->GetNumberOfRoundsPerformed()
               << " rounds";
+  }
+  if (filter->GetMinimumComponentVolume() > 0.0)
+  {
+    std::cerr << ", " << filter->GetNumberOfComponentsRemoved() << " components below "
+              << filter->GetMinimumComponentVolume() << " mm^3 removed (" << filter->GetNumberOfFacesRemoved()
+              << " faces)";
   }
   std::cerr << ", " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n" << std::defaultfloat;
 }
@@ -332,6 +349,16 @@ ReadMeshingOptions(const Arguments & args, ExtractSettings & s)
   s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
   s.isotropic = s.isotropic || args.Has("isotropic");
   s.threads = NonNegative(args, "threads", 0);
+  if (args.Has("min-component-volume") && args.Has("min-component-voxels"))
+  {
+    throw UsageError("give --min-component-volume or --min-component-voxels, not both");
+  }
+  s.minimumComponentVolume = args.GetDouble("min-component-volume", s.minimumComponentVolume); // the filter checks it
+  s.minimumComponentVoxels = args.GetDouble("min-component-voxels", 0.0);
+  if (!(s.minimumComponentVoxels >= 0.0 && std::isfinite(s.minimumComponentVoxels)))
+  {
+    throw UsageError("--min-component-voxels must be a number >= 0");
+  }
 }
 
 /** --report and --report-json: the quality (and distances to a phantom's exact surface). */
@@ -437,6 +464,11 @@ MakeExtractCommand()
       "",
       "resample to cubic voxels of the smallest spacing first: better shaped, more triangles on anisotropic voxels",
       "" },
+    { "min-component-volume",
+      "MM3",
+      "drop closed components (islands, and cavities) enclosing less than this volume (0: keep all)",
+      DefaultText(defaults.minimumComponentVolume) },
+    { "min-component-voxels", "N", "the same, in voxels of INPUT (N x the voxel volume)", "0" },
     { "threads", "N", "work units (0: all cores)", "0" },
     { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
     { "report-json", "FILE", "write the report as JSON", "" },
