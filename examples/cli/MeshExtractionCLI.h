@@ -244,6 +244,16 @@ ReadImageFile(const std::string & path);
 itk::ImageIOBase::Pointer
 ReadImageInformation(const std::string & path);
 
+/** ReadImageInformation of a 3-D image with one component per voxel; otherwise an
+ * exception that names `path` and says what `purpose` (e.g. "SurfaceNets") needs. */
+itk::ImageIOBase::Pointer
+ReadScalarVolumeInformation(const std::string & path, const std::string & purpose);
+
+/** An exception naming `path` if `image` has a voxel that is NaN or infinite, or
+ * holds one value everywhere (it has no edge and no iso-surface). */
+void
+CheckVoxelValues(const itk::Image<float, 3> * image, const std::string & path);
+
 /** The voxel grid (size, spacing, origin, direction) of an image on disk. */
 ME::PhantomGrid
 ReadImageGrid(const std::string & path);

@@ -19,10 +19,12 @@
 
 #include "MeshExtractionCLI.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 namespace MeshExtractionCLI
 {
@@ -57,10 +59,17 @@ Arguments::GetInteger(const std::string & name, long fallback) const
   }
   const std::string text = Get(name);
   char *            end = nullptr;
-  const long        v = std::strtol(text.c_str(), &end, 10);
+  errno = 0;
+  const long v = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || *end != '\0')
   {
     throw UsageError("--" + name + " expects an integer, got '" + text + "'");
+  }
+  // Options count voxels, iterations, threads: none of them is near 2^31, and a value
+  // cast to a narrower type must not wrap around silently.
+  if (errno == ERANGE || v > std::numeric_limits<int>::max() || v < std::numeric_limits<int>::min())
+  {
+    throw UsageError("--" + name + " is out of range: '" + text + "'");
   }
   return v;
 }
@@ -196,13 +205,25 @@ void
 CheckNumberOfPositional(const Command & command, const Arguments & args)
 {
   const unsigned int minimum = command.minimumPositional;
-  if (args.positional.size() < minimum || args.positional.size() > command.maximumPositional)
+  const unsigned int maximum = command.maximumPositional;
+  const std::size_t  got = args.positional.size();
+  if (got >= minimum && got <= maximum)
   {
-    throw UsageError(
-      "'" + command.name + "' expects " +
-      (minimum == command.maximumPositional ? std::to_string(minimum) : "at least " + std::to_string(minimum)) +
-      " argument(s), got " + std::to_string(args.positional.size()));
+    return;
   }
+  std::string expected = minimum == maximum ? std::to_string(minimum) : "at least " + std::to_string(minimum);
+  if (got > maximum && minimum != maximum)
+  {
+    expected = std::to_string(minimum) + " to " + std::to_string(maximum);
+  }
+  std::string message = "'" + command.name + "' expects " + expected + " argument(s), got " + std::to_string(got);
+  if (got > maximum)
+  {
+    // The usual cause: an option's list written with spaces.
+    message += " (the first surplus one is '" + args.positional[maximum] +
+               "'; an option takes one value: write lists with commas, e.g. --direction 1,0,0,0,1,0,0,0,1)";
+  }
+  throw UsageError(message);
 }
 } // namespace
 

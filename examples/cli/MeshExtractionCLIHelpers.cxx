@@ -54,21 +54,22 @@ GridOptions()
   return { { "size", "N|NxNxN", "phantom grid size in voxels", "per phantom, e.g. 64" },
            { "spacing", "S|SxSxS", "voxel spacing in mm", "1" },
            { "origin", "X,Y,Z", "physical position of voxel (0,0,0)", "0,0,0" },
-           { "direction", "9 NUMBERS", "direction cosine matrix, row by row", "identity" } };
+           { "direction", "A,B,C,D,E,F,G,H,I", "direction cosine matrix, nine numbers row by row", "identity" } };
 }
 
 namespace
 {
-/** --size: whole numbers of at least 2 voxels. */
+/** --size: whole numbers of 2 to 65536 voxels. */
 void
 ReadGridSize(const Arguments & args, ME::PhantomGrid & grid)
 {
   const auto size = args.GetNumbers("size", 3);
   for (unsigned int d = 0; d < 3; ++d)
   {
-    if (size[d] < 2 || size[d] != std::floor(size[d]))
+    // The upper bound keeps the voxel count within what a size type and memory hold.
+    if (size[d] < 2 || size[d] > 65536 || size[d] != std::floor(size[d]))
     {
-      throw UsageError("--size needs whole numbers >= 2, got '" + args.Get("size") + "'");
+      throw UsageError("--size needs whole numbers from 2 to 65536, got '" + args.Get("size") + "'");
     }
     grid.size[d] = static_cast<itk::SizeValueType>(size[d]);
   }

@@ -30,6 +30,10 @@
 #include "itkMeshFileWriter.h"
 #include "itksys/SystemTools.hxx"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace MeshExtractionCLI
 {
 namespace
@@ -128,6 +132,46 @@ ReadImageInformation(const std::string & path)
     itkGenericExceptionMacro("cannot read image '" << path << "': " << e.GetDescription());
   }
   return io;
+}
+
+itk::ImageIOBase::Pointer
+ReadScalarVolumeInformation(const std::string & path, const std::string & purpose)
+{
+  auto io = ReadImageInformation(path);
+  if (io->GetNumberOfDimensions() != 3)
+  {
+    itkGenericExceptionMacro("'" << path << "' is a " << io->GetNumberOfDimensions() << "-D image; " << purpose
+                                 << " needs a 3-D image");
+  }
+  if (io->GetNumberOfComponents() != 1)
+  {
+    itkGenericExceptionMacro("'" << path << "' has " << io->GetNumberOfComponents() << " components per voxel; "
+                                 << purpose << " needs a scalar image");
+  }
+  return io;
+}
+
+void
+CheckVoxelValues(const itk::Image<float, 3> * image, const std::string & path)
+{
+  const float *     voxels = image->GetBufferPointer();
+  const std::size_t count = image->GetBufferedRegion().GetNumberOfPixels();
+  float             lowest = std::numeric_limits<float>::infinity();
+  float             highest = -lowest;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!std::isfinite(voxels[i]))
+    {
+      itkGenericExceptionMacro("'" << path << "' has a voxel that is " << voxels[i] << " (voxel " << i
+                                   << " of the buffer): the image must hold finite values");
+    }
+    lowest = std::min(lowest, voxels[i]);
+    highest = std::max(highest, voxels[i]);
+  }
+  if (count > 0 && !(lowest < highest))
+  {
+    itkGenericExceptionMacro("'" << path << "' holds " << lowest << " in every voxel: a constant image has no edge");
+  }
 }
 
 ME::PhantomGrid

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 namespace MeshExtractionCLI
 {
@@ -195,6 +196,43 @@ PrintFilterSummary(const TFilter * filter, const ExtractSettings & s, const Stop
   std::cerr << ", " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n" << std::defaultfloat;
 }
 
+/** Reads the --labels file into the filter's label pixel type, refusing labels that
+ * type cannot hold (a cast would turn 257 into 1) and a --label it cannot name. */
+template <typename TLabelImage>
+typename TLabelImage::Pointer
+ReadLabelImage(const std::string & path, double label)
+{
+  using PixelType = typename TLabelImage::PixelType;
+  const double lowest = static_cast<double>(std::numeric_limits<PixelType>::lowest());
+  const double highest = static_cast<double>(std::numeric_limits<PixelType>::max());
+  if (!(label >= lowest && label <= highest && label == std::floor(label)))
+  {
+    throw UsageError("--label " + std::to_string(label) + " with --labels must be an integer in [" +
+                     std::to_string(lowest) + ", " + std::to_string(highest) + "]");
+  }
+  ReadScalarVolumeInformation(path, "--labels");
+  const auto wide = ReadImageFile<itk::Image<double, 3>>(path);
+  const auto region = wide->GetBufferedRegion();
+  auto       labels = TLabelImage::New();
+  labels->CopyInformation(wide);
+  labels->SetRegions(region);
+  labels->Allocate();
+  const double *    in = wide->GetBufferPointer();
+  PixelType *       out = labels->GetBufferPointer();
+  const std::size_t count = region.GetNumberOfPixels();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!(in[i] >= lowest && in[i] <= highest && in[i] == std::floor(in[i])))
+    {
+      itkGenericExceptionMacro("'" << path << "' has the label " << in[i] << " (voxel " << i
+                                   << " of the buffer): --labels takes integer labels in [" << lowest << ", " << highest
+                                   << "]");
+    }
+    out[i] = static_cast<PixelType>(in[i]);
+  }
+  return labels;
+}
+
 template <typename TImage>
 ExtractMeshType::Pointer
 RunSurfaceNets(const TImage * image, const ExtractSettings & s)
@@ -206,7 +244,7 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
   typename FilterType::LabelImageType::Pointer labels;
   if (!s.labelImage.empty())
   {
-    labels = ReadImageFile<typename FilterType::LabelImageType>(s.labelImage);
+    labels = ReadLabelImage<typename FilterType::LabelImageType>(s.labelImage, s.label);
     filter->SetLabelImage(labels);
   }
   if (s.isotropic)
@@ -226,17 +264,7 @@ RunSurfaceNets(const TImage * image, const ExtractSettings & s)
 ExtractMeshType::Pointer
 ExtractFromFile(const std::string & path, const ExtractSettings & s)
 {
-  auto io = ReadImageInformation(path);
-  if (io->GetNumberOfDimensions() != 3)
-  {
-    itkGenericExceptionMacro("'" << path << "' is a " << io->GetNumberOfDimensions()
-                                 << "-D image; SurfaceNets needs a 3-D image");
-  }
-  if (io->GetNumberOfComponents() != 1)
-  {
-    itkGenericExceptionMacro("'" << path << "' has " << io->GetNumberOfComponents()
-                                 << " components per voxel; SurfaceNets needs a scalar image");
-  }
+  auto io = ReadScalarVolumeInformation(path, "SurfaceNets");
   using IOComponent = itk::IOComponentEnum;
   switch (io->GetComponentType())
   {

@@ -144,6 +144,12 @@ RunPhantom(const Arguments & args)
   const std::string                defaultType = p.mode == PhantomImage::BinaryMask ? "uchar" : "float";
   const std::string                type = args.Get("pixel-type", defaultType);
   const std::string &              output = args.positional[1];
+  if (p.mode == PhantomImage::DistanceMap && (type == "uchar" || type == "ushort"))
+  {
+    // The distances inside the object are negative: an unsigned pixel would clip them to 0.
+    throw UsageError("a distance map is negative inside the object: --pixel-type " + type +
+                     " cannot hold it (use short, float or double)");
+  }
   std::cerr << "phantom " << ME::PhantomShapeName(shape) << ": " << grid.size << " voxels of " << grid.spacing
             << " mm, " << p.mode << ", " << type << " -> " << output << '\n';
   WritePhantomOfType(type, shape, grid, p, output);

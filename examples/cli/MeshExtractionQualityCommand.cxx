@@ -80,7 +80,14 @@ MeasureFile(const std::string & path, const Arguments & args, const QualityRefer
   settings.outwardOrientation = !args.Has("no-orientation");
   if (references.referenceMesh || references.referenceSurface)
   {
-    settings.samplingLevel = static_cast<unsigned int>(args.GetInteger("sampling-level", 2));
+    // Each triangle gets (N + 1)(N + 2) / 2 samples: 64 is finer than any use needs and
+    // keeps the samples of a large mesh in memory.
+    const long level = args.GetInteger("sampling-level", 2);
+    if (level < 0 || level > 64)
+    {
+      throw UsageError("--sampling-level must be in [0, 64], got " + std::to_string(level));
+    }
+    settings.samplingLevel = static_cast<unsigned int>(level);
   }
   const MeasuredMesh measured = MeasureMesh(mesh, path, settings);
   PrintMeasuredMesh(measured, path, std::cout);
@@ -150,7 +157,7 @@ MakeQualityCommand()
     { "phantom", "NAME", "measure distances to this phantom's exact surface", "" },
     { "image", "FILE", "take the phantom's grid from this image (else the grid options)", "" },
     { "inversion-reference", "FILE", "count triangles flipped against this mesh (same connectivity)", "" },
-    { "sampling-level", "N", "subdivisions per triangle edge for the Hausdorff samples", "2" },
+    { "sampling-level", "N", "subdivisions per triangle edge for the Hausdorff samples (0 to 64)", "2" },
     { "no-self-intersections", "", "skip the self-intersection test", "" },
     { "no-orientation", "", "skip the outward-orientation test", "" },
     { "json", "FILE", "write the reports as JSON", "" },

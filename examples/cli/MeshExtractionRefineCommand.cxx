@@ -25,6 +25,7 @@
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -398,12 +399,34 @@ PrintBeforeAndAfter(const MeasuredMesh & before, const MeasuredMesh & after, con
   PrintComparison({ before, after }, std::cout);
 }
 
-/** Reads IMAGE. */
+/** --max-deviation is a capture range inside the image: no larger than the image's
+ * diagonal, or vertices would be sent far outside it. */
+void
+CheckDeviationWithinImage(double deviation, const RefineImageType * image)
+{
+  const auto size = image->GetLargestPossibleRegion().GetSize();
+  double     diagonal = 0.0;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    const double extent = static_cast<double>(size[d]) * image->GetSpacing()[d];
+    diagonal += extent * extent;
+  }
+  diagonal = std::sqrt(diagonal);
+  if (deviation > diagonal)
+  {
+    throw UsageError("--max-deviation must be at most the image's diagonal (" + std::to_string(diagonal) +
+                     " mm), got " + std::to_string(deviation));
+  }
+}
+
+/** Reads IMAGE (a 3-D scalar image of finite, not constant values). */
 RefineImageType::Pointer
 ReadRefineImage(const std::string & imagePath)
 {
   std::cerr << "refine: " << imagePath << '\n';
+  ReadScalarVolumeInformation(imagePath, "the refinement");
   RefineImageType::Pointer image = ReadImageFile<RefineImageType>(imagePath);
+  CheckVoxelValues(image.GetPointer(), imagePath);
   std::cerr << "  image " << image->GetLargestPossibleRegion().GetSize() << " voxels of " << image->GetSpacing()
             << " mm\n";
   return image;
@@ -420,7 +443,8 @@ RunRefine(const Arguments & args)
   const std::string &            outputPath = args.positional.back();
   Stopwatch                      watch;
   const RefineImageType::Pointer image = ReadRefineImage(imagePath);
-  RefineMeshType::Pointer        mesh = InitialMesh(args, initial, image);
+  CheckDeviationWithinImage(s.deviation, image.GetPointer());
+  RefineMeshType::Pointer mesh = InitialMesh(args, initial, image);
   if (args.Has("largest-component"))
   {
     mesh = LargestComponent(mesh);

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -49,6 +50,12 @@ HtmlEscape(const std::string & text)
         break;
       case '&':
         out += "&amp;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      case '"':
+        out += "&quot;";
         break;
       default:
         out += c;
@@ -158,6 +165,15 @@ WriteHistogramSVG(const std::vector<MeasuredMesh> & meshes,
   out << "</svg>\n";
 }
 
+/** The renderings of the mesh-th mesh are named by its position, never by its file
+ * name: two inputs with the same name get their own pictures, and no file name ends
+ * up in an HTML attribute. */
+std::string
+RenderingName(std::size_t mesh)
+{
+  return "mesh-" + std::to_string(mesh + 1);
+}
+
 /** Measures one mesh file and renders it twice: shaded, and coloured by q_area with
  * the triangles outlined (zoomed). */
 MeasuredMesh
@@ -236,10 +252,11 @@ void
 WriteHtmlFigures(std::ostream & html, const std::vector<std::string> & names, const Arguments & args)
 {
   html << "<h2>Triangle quality</h2>\n<img src='q_area.svg'> <img src='q_angle.svg'>\n<h2>Meshes</h2>\n";
-  for (const auto & name : names)
+  for (std::size_t m = 0; m < names.size(); ++m)
   {
-    html << "<figure><img src='" << name << ".png' width='480'><figcaption>" << HtmlEscape(name)
-         << "</figcaption></figure><figure><img src='" << name << "-q_area.png' width='480'><figcaption>"
+    const std::string & name = names[m];
+    html << "<figure><img src='" << RenderingName(m) << ".png' width='480'><figcaption>" << HtmlEscape(name)
+         << "</figcaption></figure><figure><img src='" << RenderingName(m) << "-q_area.png' width='480'><figcaption>"
          << HtmlEscape(name) << ": q_area (red 0, blue 1), centre magnified</figcaption></figure><br>\n";
   }
   if (args.Has("include"))
@@ -283,6 +300,8 @@ RunReport(const Arguments & args)
 {
   const std::string directory = args.positional.front();
   itksys::SystemTools::MakeDirectory(directory);
+  // A page of an earlier run would look like this run's if this one fails.
+  itksys::SystemTools::RemoveFile(directory + "/index.html");
   itk::ImplicitSurfaceFunction::Pointer surface;
   IOMeshType::Pointer                   referenceMesh;
   if (args.Has("phantom"))
@@ -304,19 +323,34 @@ RunReport(const Arguments & args)
   {
     const std::string & path = args.positional[i];
     names.push_back(itksys::SystemTools::GetFilenameWithoutLastExtension(path));
-    meshes.push_back(MeasureAndRender(path, names.back(), directory, settings));
+    meshes.push_back(MeasureAndRender(path, RenderingName(i - 1), directory, settings));
   }
   WriteFigureFiles(meshes, names, directory);
 
-  std::ofstream html(directory + "/index.html");
-  if (!html)
+  // index.html last, whole or not at all: a failed run leaves no page that looks complete.
+  const std::string page = directory + "/index.html";
+  const std::string partial = page + ".partial";
   {
-    itkGenericExceptionMacro("cannot write '" << directory << "/index.html'");
+    std::ofstream html(partial);
+    if (!html)
+    {
+      itkGenericExceptionMacro("cannot write '" << partial << "'");
+    }
+    WriteHtmlHead(html, args.Get("title", "MeshExtraction report"), settings);
+    WriteHtmlTable(html, meshes, names);
+    WriteHtmlFigures(html, names, args);
+    html.flush();
+    if (!html)
+    {
+      itksys::SystemTools::RemoveFile(partial);
+      itkGenericExceptionMacro("cannot write '" << partial << "' (disk full?)");
+    }
   }
-  WriteHtmlHead(html, args.Get("title", "MeshExtraction report"), settings);
-  WriteHtmlTable(html, meshes, names);
-  WriteHtmlFigures(html, names, args);
-  std::cout << "report: " << directory << "/index.html\n";
+  if (std::rename(partial.c_str(), page.c_str()) != 0)
+  {
+    itkGenericExceptionMacro("cannot rename '" << partial << "' to '" << page << "'");
+  }
+  std::cout << "report: " << page << '\n';
   return 0;
 }
 } // namespace

@@ -1,0 +1,33 @@
+# Runs `report` on two meshes with the same base name, one of which has quotes in its
+# name, and fails unless index.html names its pictures by position (no file name in an
+# attribute, one picture per mesh) and escapes the names it shows. Used by the
+# command-line test cli.report_escapes_names.
+set(odd "${OUT}/x' onerror='alert(1)")
+file(MAKE_DIRECTORY "${OUT}/a" "${OUT}/b")
+foreach(mesh "${odd}.vtk" "${OUT}/a/m.vtk" "${OUT}/b/m.vtk")
+  execute_process(COMMAND ${TOOL} extract --phantom sphere "${mesh}" --size 12 RESULT_VARIABLE status)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "could not make ${mesh}")
+  endif()
+endforeach()
+file(REMOVE_RECURSE "${OUT}/report-escaping")
+execute_process(COMMAND ${TOOL} report "${OUT}/report-escaping" "${odd}.vtk" "${OUT}/a/m.vtk" "${OUT}/b/m.vtk"
+  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "report failed (${status}):\n${out}${err}")
+endif()
+file(READ "${OUT}/report-escaping/index.html" html)
+string(FIND "${html}" "onerror='" unescaped)
+if(NOT unescaped EQUAL -1)
+  message(FATAL_ERROR "index.html has the file name unescaped")
+endif()
+foreach(picture mesh-1.png mesh-2.png mesh-3.png mesh-3-q_area.png)
+  if(NOT EXISTS "${OUT}/report-escaping/${picture}")
+    message(FATAL_ERROR "no ${picture}: each mesh gets its own pictures")
+  endif()
+endforeach()
+string(FIND "${html}" "x&#39; onerror=&#39;alert(1)" escaped)
+if(escaped EQUAL -1)
+  message(FATAL_ERROR "index.html does not show the escaped name")
+endif()
+message(STATUS "ok: names escaped, pictures by position")
