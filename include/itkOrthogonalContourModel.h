@@ -106,7 +106,6 @@ public:
   using DirectionType = Matrix<double, 3, 3>;
   using RadiiType = Vector<double, 3>;
   using IdentifierListType = std::vector<unsigned int>;
-  using NetworkType = MeshExtraction::detail::ContourNetwork;
 
   /** The voxel grid: that of `image` (its largest possible region's size; the region
    * must start at index 0), or given. Clears the contours. Throws for an invalid grid. */
@@ -263,13 +262,6 @@ public:
   void
   Initialize() override;
 
-  /** The model's data, for the module's filters (MeshExtraction::detail::ContourNetwork). */
-  const NetworkType &
-  GetNetwork() const
-  {
-    return m_Network;
-  }
-
 protected:
   OrthogonalContourModel() = default;
   ~OrthogonalContourModel() override = default;
@@ -277,6 +269,17 @@ protected:
   PrintSelf(std::ostream & os, Indent indent) const override;
 
 private:
+  template <typename TOutputMesh>
+  friend class OrthogonalContourModelToMeshFilter;
+  using NetworkType = MeshExtraction::detail::ContourNetwork;
+
+  /** The model's data, for the module's filters. */
+  const NetworkType &
+  GetNetwork() const
+  {
+    return m_Network;
+  }
+
   void
   CheckControlPoint(unsigned int p) const;
   void
