@@ -16,6 +16,9 @@
  *
  *=========================================================================*/
 #include "itkOrthogonalContourModel.h"
+#include "itkEllipsoidImplicitSurface.h"
+#include "itkOrthogonalContourModelTestHelpers.h"
+#include "itkSphereImplicitSurface.h"
 #include "itkOrthogonalContourModelToMeshFilter.h"
 #include "itkTriangleMeshQualityCalculator.h"
 #include "itkImage.h"
@@ -26,6 +29,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
@@ -498,4 +503,218 @@ TEST(OrthogonalContourModel, MeshFilterIsRepeatableAndReadyForRefinement)
   EXPECT_TRUE(report.IsValidClosedSurface());
   EXPECT_GT(report.qArea.mean, 0.6);
   EXPECT_NEAR(report.enclosedVolume, model->GetVolume(), 0.03 * model->GetVolume());
+}
+
+namespace
+{
+/** The rules of thesis chapter 5, checked from the public interface: every contour in
+ * its plane and closed (its scan conversion a 4-connected cycle through its control
+ * points), every control point where two contours of different axes cross (on both
+ * planes, with four distinct neighbours), the curve through its control points. */
+void
+ExpectChapterFiveInvariants(const ModelType & model)
+{
+  std::vector<unsigned int> membership(model.GetNumberOfControlPoints(), 0);
+  for (unsigned int c = 0; c < model.GetNumberOfContours(); ++c)
+  {
+    const unsigned int axis = model.GetContourAxis(c);
+    const auto         position = static_cast<double>(model.GetContourPosition(c));
+    const auto         points = model.GetContourControlPoints(c);
+    ASSERT_GE(points.size(), 4u) << "contour " << c;
+    const auto samples = model.SampleContour(c, 4);
+    ASSERT_EQ(samples.size(), 4 * points.size());
+    for (std::size_t k = 0; k < points.size(); ++k)
+    {
+      ++membership[points[k]];
+      EXPECT_EQ(model.GetControlPointIndex(points[k])[axis], position) << "control point off its contour's plane";
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        EXPECT_NEAR(samples[4 * k][i], model.GetControlPointIndex(points[k])[i], 1e-9)
+          << "the curve misses a control point";
+      }
+    }
+    for (const auto & x : samples)
+    {
+      EXPECT_EQ(x[axis], position) << "contour " << c << " leaves its plane";
+    }
+    const auto voxels = model.GetScanConversion(c);
+    for (std::size_t i = 0; i < voxels.size(); ++i)
+    {
+      EXPECT_TRUE(FourNeighbours(voxels[i], voxels[(i + 1) % voxels.size()])) << "contour " << c << " not closed";
+    }
+  }
+  for (unsigned int p = 0; p < model.GetNumberOfControlPoints(); ++p)
+  {
+    EXPECT_EQ(membership[p], 2u) << "control point " << p << " is not on exactly two contours";
+    const auto contours = model.GetControlPointContours(p);
+    const auto x = model.GetControlPointIndex(p);
+    EXPECT_NE(model.GetContourAxis(contours[0]), model.GetContourAxis(contours[1]));
+    for (const auto c : contours)
+    {
+      EXPECT_EQ(x[model.GetContourAxis(c)], static_cast<double>(model.GetContourPosition(c)))
+        << "control point " << p << " is not at the intersection of its contours";
+    }
+    const auto n = model.GetControlPointNeighbours(p);
+    EXPECT_EQ(std::set<unsigned int>(n.begin(), n.end()).size(), 4u) << "control point " << p;
+  }
+}
+
+/** A model fitted to `surface` by a user who knows it: the template, then contours in
+ * the planes `planes` (axis, position), every control point put on the surface after
+ * each step. */
+ModelType::Pointer
+FitModel(const itk::ImplicitSurfaceFunction &              surface,
+         double                                            radius,
+         const std::vector<std::pair<unsigned int, int>> & planes)
+{
+  const auto model = MakeTemplate(48, radius);
+  OrthogonalContourTest::SnapToSurface(*model, surface, 0.0);
+  for (const auto & plane : planes)
+  {
+    EXPECT_TRUE(model->AddContour(plane.first, plane.second)) << model->GetRefusalReason();
+    OrthogonalContourTest::SnapToSurface(*model, surface, 0.0);
+  }
+  return model;
+}
+
+std::vector<std::pair<unsigned int, int>>
+PlanesAround(int centre, int offset)
+{
+  std::vector<std::pair<unsigned int, int>> planes;
+  for (unsigned int axis = 0; axis < 3; ++axis)
+  {
+    planes.push_back({ axis, centre - offset });
+    planes.push_back({ axis, centre + offset });
+  }
+  return planes;
+}
+
+void
+ExpectCloseValidMesh(const ModelType *                    model,
+                     const itk::ImplicitSurfaceFunction * surface,
+                     double                               meanTolerance,
+                     double                               maximumTolerance)
+{
+  ExpectValidMesh(model, "fitted model");
+  const auto distance = OrthogonalContourTest::MeshDistance(model, surface);
+  std::cout << "mesh to surface: vertices mean " << distance.vertices.mean << " max " << distance.vertices.maximum
+            << ", Hausdorff " << distance.hausdorff << " (mm, 1 mm voxels, " << model->GetNumberOfContours()
+            << " contours)" << std::endl;
+  EXPECT_LT(distance.vertices.mean, meanTolerance);
+  EXPECT_LT(distance.hausdorff, maximumTolerance);
+}
+
+/** The description of the exception `f` throws, or "" if it throws none. */
+template <typename TFunction>
+std::string
+ThrownDescription(TFunction && f)
+{
+  try
+  {
+    f();
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    return e.GetDescription();
+  }
+  return std::string();
+}
+
+/** The model's JSON with the three coordinates of its first control point replaced. */
+std::string
+WithFirstPoint(const std::string & json, const std::string & coordinates)
+{
+  const std::size_t begin = json.find('[', json.find("\"control_points\": [") + 19) + 1;
+  const std::size_t end = json.find(']', begin);
+  return json.substr(0, begin) + coordinates + json.substr(end);
+}
+} // namespace
+
+TEST(OrthogonalContourModel, FittedContoursKeepTheChapterFiveInvariants)
+{
+  auto sphere = itk::SphereImplicitSurface::New();
+  sphere->SetCenter(Pt(24.0, 24.0, 24.0));
+  sphere->SetRadius(14.0);
+  const auto model = FitModel(*sphere, 10.0, PlanesAround(24, 7));
+  EXPECT_EQ(model->GetNumberOfContours(), 9u);
+  EXPECT_EQ(model->CheckInvariants(), "");
+  ExpectChapterFiveInvariants(*model);
+  // And after random edits.
+  std::mt19937 random(5);
+  for (unsigned int i = 0; i < 200; ++i)
+  {
+    const unsigned int p =
+      std::uniform_int_distribution<unsigned int>(0, model->GetNumberOfControlPoints() - 1)(random);
+    const auto range = model->GetControlPointRange(p);
+    model->MoveControlPoint(p, std::uniform_real_distribution<double>(range[0], range[1])(random));
+  }
+  ExpectChapterFiveInvariants(*model);
+}
+
+TEST(OrthogonalContourModel, MeshOfContoursOnASphereIsCloseToIt)
+{
+  // Sphere of radius 14 mm in 1 mm voxels; the contours' points on it exactly.
+  auto sphere = itk::SphereImplicitSurface::New();
+  sphere->SetCenter(Pt(24.0, 24.0, 24.0));
+  sphere->SetRadius(14.0);
+  const auto model = FitModel(*sphere, 10.0, PlanesAround(24, 7));
+  const auto contourError = OrthogonalContourTest::MeasureContourError(*model, *sphere);
+  std::cout << "sphere: contour error mean " << contourError.mean << " max " << contourError.maximum << std::endl;
+  EXPECT_LT(contourError.mean, 0.5);
+  ExpectCloseValidMesh(model, sphere, 0.5, 1.5);
+}
+
+TEST(OrthogonalContourModel, MeshOfContoursOnAnEllipsoidIsCloseToIt)
+{
+  auto ellipsoid = itk::EllipsoidImplicitSurface::New();
+  ellipsoid->SetCenter(Pt(24.0, 24.0, 24.0));
+  ellipsoid->SetSemiAxes(Vec(17.0, 12.0, 9.0));
+  const auto model = FitModel(*ellipsoid, 8.0, { { 0, 15 }, { 0, 33 }, { 1, 18 }, { 1, 30 }, { 2, 20 }, { 2, 28 } });
+  const auto contourError = OrthogonalContourTest::MeasureContourError(*model, *ellipsoid);
+  std::cout << "ellipsoid: contour error mean " << contourError.mean << " max " << contourError.maximum << std::endl;
+  EXPECT_LT(contourError.mean, 0.5);
+  ExpectCloseValidMesh(model, ellipsoid, 0.5, 2.0);
+}
+
+TEST(OrthogonalContourModel, BadInputIsRefusedNamingTheProblem)
+{
+  const auto        model = MakeTemplate(33, 10.0);
+  const std::string json = model->ToJSON();
+  auto              other = ModelType::New();
+  // A contour that does not close through its points: one point taken out of it.
+  std::string       open = json;
+  const std::size_t points = open.find("\"points\": [") + 11;
+  open.erase(points, open.find(',', points) - points + 2);
+  std::string problem = ThrownDescription([&] { other->FromJSON(open, "open.json"); });
+  EXPECT_NE(problem.find("open.json"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("contour"), std::string::npos) << problem;
+  std::cout << "open contour: " << problem << std::endl;
+  // Contours that do not meet: a control point off the planes of its contours.
+  problem = ThrownDescription([&] { other->FromJSON(WithFirstPoint(json, "16.5, 16.5, 16.5"), "apart.json"); });
+  EXPECT_NE(problem.find("apart.json"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("not in the plane"), std::string::npos) << problem;
+  std::cout << "contours apart: " << problem << std::endl;
+  // NaN: a coordinate that is not a number (JSON writes NaN as null).
+  problem = ThrownDescription([&] { other->FromJSON(WithFirstPoint(json, "null, 16, 16"), "nan.json"); });
+  EXPECT_NE(problem.find("nan.json"), std::string::npos) << problem;
+  std::cout << "NaN coordinate: " << problem << std::endl;
+  EXPECT_EQ(other->GetNumberOfContours(), 0u) << "a refused file changed the model";
+  // NaN moves and grids.
+  const std::string before = model->ToJSON();
+  EXPECT_FALSE(model->MoveControlPoint(0, std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_NE(model->GetRefusalReason(), "");
+  EXPECT_EQ(model->ToJSON(), before);
+  ModelType::SizeType size;
+  size.Fill(10);
+  ModelType::DirectionType direction;
+  direction.SetIdentity();
+  problem = ThrownDescription([&] {
+    other->SetGrid(size, Vec(1.0, std::numeric_limits<double>::quiet_NaN(), 1.0), Pt(0.0, 0.0, 0.0), direction);
+  });
+  EXPECT_NE(problem.find("spacing"), std::string::npos) << problem;
+  // The mesh filter refuses a model without contours, naming it.
+  auto filter = FilterType::New();
+  filter->SetInput(other);
+  problem = ThrownDescription([&] { filter->Update(); });
+  EXPECT_NE(problem.find("not valid"), std::string::npos) << problem;
 }
