@@ -68,7 +68,8 @@ OrthogonalContourModelToMeshFilter<TOutputMesh>::GenerateData()
     MeshExtraction::detail::BuildContourSurface(model->GetNetwork(), parameters);
   if (surface.triangles.empty())
   {
-    itkExceptionMacro(<< "The model's faces do not close a surface");
+    itkExceptionMacro(<< "The model's faces do not make a valid closed surface (closed, 2-manifold, outward, "
+                         "without degenerate or intersecting triangles)");
   }
   OutputMeshType * output = this->GetOutput();
   output->Initialize();
