@@ -10,6 +10,7 @@ packages=(
   libinsighttoolkit5-dev libvtk9-dev libgtest-dev libbenchmark-dev
   python3 invesalius-examples mricron-data
   python3-distributed time
+  xvfb xauth hdf5-tools
 )
 missing=()
 for p in "${packages[@]}"; do
