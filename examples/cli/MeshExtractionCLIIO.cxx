@@ -28,11 +28,17 @@
 #include "itkImageSeriesReader.h"
 #include "itkMeshFileReader.h"
 #include "itkMeshFileWriter.h"
+#include "itk_zlib.h"
 #include "itksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <cstring>
+#include <cstdint>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 namespace MeshExtractionCLI
 {
@@ -85,6 +91,116 @@ GridOf(const TImage * image)
 // ------------------------------------------------------------------------------
 // Images
 // ------------------------------------------------------------------------------
+namespace
+{
+/** Whether ITK's reader for `path` leaves the last bytes of a buffer prefilled with
+ * `fill` as they were: what it does when the file ends before the voxel data its
+ * header describes. Null if ITK has no reader for it (the reader reports that). */
+std::optional<bool>
+LeavesTheTailUnwritten(const std::string & path, unsigned char fill)
+{
+  auto io = itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
+  if (io.IsNull())
+  {
+    return std::nullopt;
+  }
+  io->SetFileName(path);
+  io->ReadImageInformation();
+  const std::size_t bytes = io->GetImageSizeInBytes();
+  if (bytes == 0)
+  {
+    return std::nullopt;
+  }
+  itk::ImageIORegion region(io->GetNumberOfDimensions());
+  for (unsigned int d = 0; d < io->GetNumberOfDimensions(); ++d)
+  {
+    region.SetIndex(d, 0);
+    region.SetSize(d, io->GetDimensions(d));
+  }
+  io->SetIORegion(region);
+  std::vector<unsigned char> buffer(bytes, fill);
+  io->Read(buffer.data());
+  const std::size_t tail = std::min<std::size_t>(bytes, 4096);
+  return std::all_of(buffer.end() - tail, buffer.end(), [fill](unsigned char b) { return b == fill; });
+}
+
+/** Several of ITK's readers (MetaImage, NIfTI, NRRD, compressed or not) read a file
+ * that ends before its voxel data does without an error, and leave the rest of the
+ * image as the memory was. Reading the file into a buffer filled with a pattern, and
+ * again with another, tells: a tail that keeps both patterns was never read. The
+ * extra read costs a second pass over the file, which is what certainty costs
+ * without a reader that reports it. */
+/** The bytes a NIfTI-1 file (.nii or .nii.gz) holds after its header's vox_offset,
+ * read through zlib (which reads uncompressed files as they are); null if it is not
+ * a NIfTI-1 single file. */
+std::optional<std::uint64_t>
+NiftiBytesAfterOffset(const std::string & path)
+{
+  gzFile file = gzopen(path.c_str(), "rb");
+  if (file == nullptr)
+  {
+    return std::nullopt;
+  }
+  std::array<unsigned char, 348> header{};
+  std::optional<std::uint64_t>   result;
+  if (gzread(file, header.data(), 348) == 348 && std::memcmp(header.data() + 344, "n+1", 4) == 0)
+  {
+    std::int32_t sizeofHeader;
+    float        voxOffset;
+    std::memcpy(&sizeofHeader, header.data(), 4);
+    if (sizeofHeader != 348) // the other byte order
+    {
+      std::reverse(header.begin() + 108, header.begin() + 112);
+    }
+    std::memcpy(&voxOffset, header.data() + 108, 4);
+    std::uint64_t     total = 348;
+    std::vector<char> chunk(1 << 16);
+    int               got;
+    while ((got = gzread(file, chunk.data(), static_cast<unsigned int>(chunk.size()))) > 0)
+    {
+      total += static_cast<std::uint64_t>(got);
+    }
+    if (got == 0 && voxOffset >= 348.0f)
+    {
+      const auto offset = static_cast<std::uint64_t>(voxOffset);
+      result = total > offset ? total - offset : 0;
+    }
+  }
+  gzclose(file);
+  return result;
+}
+
+void
+CheckImageDataComplete(const std::string & path)
+{
+  const std::string lower = itksys::SystemTools::LowerCase(path);
+  const bool        nifti = lower.size() > 4 && (lower.compare(lower.size() - 4, 4, ".nii") == 0 ||
+                                          (lower.size() > 7 && lower.compare(lower.size() - 7, 7, ".nii.gz") == 0));
+  if (nifti)
+  {
+    // The NIfTI reader copies whatever its library read over the whole buffer: count instead.
+    auto io = itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
+    if (io.IsNull())
+    {
+      return;
+    }
+    io->SetFileName(path);
+    io->ReadImageInformation();
+    const std::optional<std::uint64_t> held = NiftiBytesAfterOffset(path);
+    if (held && *held < io->GetImageSizeInBytes())
+    {
+      itkGenericExceptionMacro("'" << path << "' ends before its voxel data does (a truncated or corrupt file: "
+                                   << *held << " of " << io->GetImageSizeInBytes() << " bytes)");
+    }
+    return;
+  }
+  if (LeavesTheTailUnwritten(path, 0xA5).value_or(false) && LeavesTheTailUnwritten(path, 0x5A).value_or(false))
+  {
+    itkGenericExceptionMacro("'" << path << "' ends before its voxel data does (a truncated or corrupt file)");
+  }
+}
+} // namespace
+
 template <typename TImage>
 typename TImage::Pointer
 ReadImageFile(const std::string & path)
@@ -101,6 +217,7 @@ ReadImageFile(const std::string & path)
       reader->Update();
       return reader->GetOutput();
     }
+    CheckImageDataComplete(path);
     auto reader = itk::ImageFileReader<TImage>::New();
     reader->SetFileName(path);
     reader->Update();
