@@ -647,6 +647,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrepareInpu
   {
     itkExceptionMacro("No input image: call SetInput() first.");
   }
+  if (this->GetInput()->GetLargestPossibleRegion().GetNumberOfPixels() == 0)
+  {
+    itkExceptionMacro("The input image has no voxels (its size is "
+                      << this->GetInput()->GetLargestPossibleRegion().GetSize() << ").");
+  }
   this->VerifyParameters();
   // Resampled copies, when asked for, replace the inputs for every stage. They are
   // released at the end (after an exception, by the next run or the filter's end).

@@ -265,6 +265,14 @@ ReadScalarVolumeInformation(const std::string & path, const std::string & purpos
     itkGenericExceptionMacro("'" << path << "' has " << io->GetNumberOfComponents() << " components per voxel; "
                                  << purpose << " needs a scalar image");
   }
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    if (io->GetDimensions(d) == 0)
+    {
+      itkGenericExceptionMacro("'" << path << "' has no voxels (its size is " << io->GetDimensions(0) << " x "
+                                   << io->GetDimensions(1) << " x " << io->GetDimensions(2) << ")");
+    }
+  }
   return io;
 }
 
@@ -302,6 +310,7 @@ ReadImageGrid(const std::string & path)
     return GridOf(image.GetPointer());
   }
   RequireReadable(path);
+  ReadScalarVolumeInformation(path, "a phantom's grid");
   reader->SetFileName(path);
   try
   {
