@@ -16,13 +16,11 @@ itk_module(MeshExtraction
     ITKQuadEdgeMeshFiltering
     ITKImageFunction
     ITKImageGrid
-    ITKImageIntensity
     ITKImageSources
     ITKTransform
     ITKOptimizers
     ITKRegistrationCommon
     ITKStatistics
-    ITKImageNoise
   TEST_DEPENDS
     ITKTestKernel
     ITKGoogleTest

@@ -29,6 +29,9 @@
 
 #include "MeshExtractionCLI.h"
 
+#include "itkVersion.h"
+#include "itksys/SystemTools.hxx"
+
 #include <iomanip>
 #include <iostream>
 
@@ -52,7 +55,18 @@ PrintUsage(std::ostream & os, const std::vector<Command> & commands)
   {
     os << "  " << std::left << std::setw(10) << c.name << c.summary << '\n';
   }
-  os << "\nRun 'meshextraction COMMAND --help' for the options of a command.\n";
+  os << "\nRun 'meshextraction COMMAND --help' for the options of a command; 'meshextraction --version'\n"
+        "prints the versions. Installed as meshextraction-extract (a link), the tool runs 'extract' and\n"
+        "'meshextraction-extract --xml' describes it to 3D Slicer as a CLI module.\n";
+}
+
+/** The command the program's own name implies: meshextraction-extract runs extract. */
+std::string
+CommandOfProgramName(const char * argv0)
+{
+  const std::string program = itksys::SystemTools::GetFilenameWithoutExtension(argv0);
+  const std::string prefix = "meshextraction-";
+  return program.compare(0, prefix.size(), prefix) == 0 ? program.substr(prefix.size()) : std::string();
 }
 } // namespace
 
@@ -60,6 +74,22 @@ int
 main(int argc, char * argv[])
 {
   const std::vector<Command> commands = Commands();
+  // meshextraction-extract ARGS is meshextraction extract ARGS (3D Slicer calls a CLI
+  // module's executable with the module's own arguments only).
+  std::vector<char *> arguments(argv, argv + argc);
+  const std::string   implied = CommandOfProgramName(argv[0]);
+  std::string         impliedStorage = implied;
+  if (!implied.empty())
+  {
+    arguments.insert(arguments.begin() + 1, impliedStorage.data());
+    argc = static_cast<int>(arguments.size());
+    argv = arguments.data();
+  }
+  if (argc >= 2 && std::string(argv[1]) == "--version")
+  {
+    std::cout << "meshextraction " << MeshExtractionVersion() << " (ITK " << itk::Version::GetITKVersion() << ")\n";
+    return 0;
+  }
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" || std::string(argv[1]) == "help")
   {
     PrintUsage(argc < 2 ? std::cerr : std::cout, commands);
@@ -84,6 +114,11 @@ main(int argc, char * argv[])
       command->PrintHelp(std::cout);
       return 0;
     }
+  }
+  if (argc == 3 && std::string(argv[2]) == "--xml" && command->slicerXML)
+  {
+    std::cout << command->slicerXML();
+    return 0;
   }
   try
   {

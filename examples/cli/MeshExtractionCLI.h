@@ -128,7 +128,9 @@ struct Command
   std::vector<OptionSpec>               options;
   std::function<int(const Arguments &)> run;
   unsigned int                          minimumPositional{ 0 };
-  unsigned int                          maximumPositional{ 1000 };
+  /** The 3D Slicer Execution Model description (`COMMAND --xml`), if it has one. */
+  std::function<std::string()> slicerXML;
+  unsigned int                 maximumPositional{ 1000 };
 
   void
   PrintHelp(std::ostream & os) const;
@@ -243,6 +245,15 @@ ReadImageFile(const std::string & path);
 /** Header information of an image file or DICOM directory: component type and dimension. */
 itk::ImageIOBase::Pointer
 ReadImageInformation(const std::string & path);
+
+/** The DICOM series a directory is read as (SeriesInstanceUID, from --series); empty:
+ * the first, with the others listed. */
+void
+SetDicomSeries(const std::string & uid);
+
+/** The module's version (pyproject.toml's). */
+std::string
+MeshExtractionVersion();
 
 /** ReadImageInformation of a 3-D image with one component per voxel; otherwise an
  * exception that names `path` and says what `purpose` (e.g. "SurfaceNets") needs. */

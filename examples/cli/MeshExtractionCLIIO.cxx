@@ -36,8 +36,10 @@
 #include <cstdint>
 #include <array>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 namespace MeshExtractionCLI
@@ -59,6 +61,14 @@ RequireReadable(const std::string & path)
   }
 }
 
+/** --series: the SeriesInstanceUID to read from a DICOM directory (empty: the first). */
+std::string &
+DicomSeriesChoice()
+{
+  static std::string choice;
+  return choice;
+}
+
 /** The files of the first DICOM series in a directory, in slice order. */
 std::vector<std::string>
 DicomSeriesFiles(const std::string & directory)
@@ -71,7 +81,30 @@ DicomSeriesFiles(const std::string & directory)
   {
     itkGenericExceptionMacro("'" << directory << "' is a directory without a DICOM series");
   }
-  return names->GetFileNames(series.front());
+  const std::string & chosen = DicomSeriesChoice();
+  if (chosen.empty())
+  {
+    if (series.size() > 1)
+    {
+      std::cerr << "  '" << directory << "' holds " << series.size() << " DICOM series; reading the first (choose one "
+                << "with --series UID):\n";
+      for (const auto & uid : series)
+      {
+        std::cerr << "    " << uid << " (" << names->GetFileNames(uid).size() << " files)\n";
+      }
+    }
+    return names->GetFileNames(series.front());
+  }
+  if (std::find(series.begin(), series.end(), chosen) == series.end())
+  {
+    std::ostringstream found;
+    for (const auto & uid : series)
+    {
+      found << "\n  " << uid << " (" << names->GetFileNames(uid).size() << " files)";
+    }
+    itkGenericExceptionMacro("'" << directory << "' has no DICOM series " << chosen << "; it has:" << found.str());
+  }
+  return names->GetFileNames(chosen);
 }
 
 /** The grid of an image. */
@@ -187,7 +220,7 @@ CheckImageDataComplete(const std::string & path)
     io->SetFileName(path);
     io->ReadImageInformation();
     const std::optional<std::uint64_t> held = NiftiBytesAfterOffset(path);
-    if (held && *held < io->GetImageSizeInBytes())
+    if (held && *held < static_cast<std::uint64_t>(io->GetImageSizeInBytes()))
     {
       itkGenericExceptionMacro("'" << path << "' ends before its voxel data does (a truncated or corrupt file: "
                                    << *held << " of " << io->GetImageSizeInBytes() << " bytes)");
@@ -200,6 +233,18 @@ CheckImageDataComplete(const std::string & path)
   }
 }
 } // namespace
+
+void
+SetDicomSeries(const std::string & uid)
+{
+  DicomSeriesChoice() = uid;
+}
+
+std::string
+MeshExtractionVersion()
+{
+  return MESHEXTRACTION_VERSION;
+}
 
 template <typename TImage>
 typename TImage::Pointer

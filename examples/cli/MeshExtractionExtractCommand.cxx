@@ -25,6 +25,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <limits>
 
 namespace MeshExtractionCLI
@@ -377,6 +378,7 @@ ReadMeshingOptions(const Arguments & args, ExtractSettings & s)
   s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
   s.isotropic = s.isotropic || args.Has("isotropic");
   s.threads = NonNegative(args, "threads", 0);
+  SetDicomSeries(args.Get("series"));
   if (args.Has("min-component-volume") && args.Has("min-component-voxels"))
   {
     throw UsageError("give --min-component-volume or --min-component-voxels, not both");
@@ -444,6 +446,54 @@ RunExtract(const Arguments & args)
 }
 } // namespace
 
+/** The 3D Slicer Execution Model description of extract: the options a Slicer user
+ * sets, with the filter's defaults. Slicer passes every parameter, so the label mode
+ * (whose option switches the mode by being present) is not among them: a label map is
+ * extracted with --iso 0.5 --inside above. */
+std::string
+ExtractSlicerXML()
+{
+  const ExtractSettings d = ExtractDefaults();
+  std::ostringstream    x;
+  x << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<executable>\n"
+    << "  <category>Surface Models</category>\n  <title>MeshExtraction SurfaceNets</title>\n"
+    << "  <description><![CDATA[A closed, 2-manifold, outward-oriented surface mesh of the voxels above (or below) "
+       "an iso-value, by SurfaceNets with SNERT relaxation (P.W. de Bruin, thesis, TU Delft 2004); the high-quality "
+       "mode gives near-equilateral triangles.]]></description>\n"
+    << "  <version>" << MeshExtractionVersion() << "</version>\n  <license>Apache 2.0</license>\n"
+    << "  <contributor>ITK MeshExtraction</contributor>\n"
+    << "  <parameters>\n    <label>Input and output</label>\n"
+    << "    <image><name>input</name><label>Input volume</label><channel>input</channel><index>0</index>"
+       "<description>A 3-D scalar image</description></image>\n"
+    << "    <geometry fileExtensions=\".vtk\"><name>output</name><label>Output model</label><channel>output</channel>"
+       "<index>1</index><description>The surface mesh</description></geometry>\n  </parameters>\n"
+    << "  <parameters>\n    <label>Object</label>\n"
+    << "    <double><name>iso</name><longflag>iso</longflag><label>Iso-value</label><default>" << d.isoValue
+    << "</default><description>The boundary between object and background</description></double>\n"
+    << "    <string-enumeration><name>inside</name><longflag>inside</longflag><label>Object is</label><default>"
+    << (d.insideAbove ? "above" : "below") << "</default><element>above</element><element>below</element>"
+    << "<description>Which side of the iso-value is the object</description></string-enumeration>\n"
+    << "    <double><name>minComponentVolume</name><longflag>min-component-volume</longflag><label>Smallest "
+       "component (mm^3)</label><default>"
+    << d.minimumComponentVolume
+    << "</default><description>Drop closed components that enclose less (0: keep all)</description></double>\n"
+    << "  </parameters>\n  <parameters>\n    <label>Meshing</label>\n"
+    << "    <string-enumeration><name>quality</name><longflag>quality</longflag><label>Quality</label><default>"
+    << (d.highQuality ? "high" : "standard") << "</default><element>standard</element><element>high</element>"
+    << "<description>high: regularity edge swaps alternating with SNERT</description></string-enumeration>\n"
+    << "    <string-enumeration><name>relaxation</name><longflag>relaxation</longflag><label>Relaxation</label>"
+       "<default>auto</default><element>auto</element><element>none</element><element>sna</element>"
+       "<element>gradient</element><element>snert</element><description>auto: SNERT</description>"
+       "</string-enumeration>\n"
+    << "    <integer><name>iterations</name><longflag>iterations</longflag><label>Iterations</label><default>"
+    << d.iterations << "</default><description>Largest number of relaxation iterations</description></integer>\n"
+    << "    <boolean><name>isotropic</name><longflag>isotropic</longflag><label>Resample to cubic voxels</label>"
+       "<default>false</default><description>Better shaped triangles on anisotropic voxels</description>"
+       "</boolean>\n"
+    << "  </parameters>\n</executable>\n";
+  return x.str();
+}
+
 Command
 MakeExtractCommand()
 {
@@ -497,6 +547,7 @@ MakeExtractCommand()
       "drop closed components (islands, and cavities) enclosing less than this volume (0: keep all)",
       DefaultText(defaults.minimumComponentVolume) },
     { "min-component-voxels", "N", "the same, in voxels of INPUT (N x the voxel volume)", "0" },
+    { "series", "UID", "the DICOM series to read when INPUT is a directory (default: the first; all are listed)", "" },
     { "threads", "N", "work units (0: all cores)", "0" },
     { "report", "", "print the quality report (and distances to a phantom's exact surface)", "" },
     { "report-json", "FILE", "write the report as JSON", "" },
@@ -508,6 +559,7 @@ MakeExtractCommand()
   c.minimumPositional = 1;
   c.maximumPositional = 2;
   c.run = RunExtract;
+  c.slicerXML = ExtractSlicerXML;
   return c;
 }
 

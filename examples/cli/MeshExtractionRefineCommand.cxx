@@ -287,6 +287,7 @@ ReadRefineSettings(const Arguments & args, const RefineFilterType * defaults)
   s.smoothingSteps = args.GetInteger("smoothing-steps", defaults->GetMaximumNumberOfSmoothingSteps());
   s.perOctave = args.GetInteger("scales-per-octave", defaults->GetNumberOfScalesPerOctave());
   s.threads = args.GetInteger("threads", 0);
+  SetDicomSeries(args.Get("series"));
   if (s.cycles < 0 || s.smoothingSteps < 1 || s.perOctave < 1 || s.threads < 0)
   {
     throw UsageError("--cycles must be >= 0, --smoothing-steps and --scales-per-octave >= 1, --threads >= 0");
@@ -504,6 +505,7 @@ MakeRefineCommand()
   const auto defaults = RefineFilterType::New();
   c.options = {
     { "max-deviation", "MM", "largest distance from the initial mesh to the edge (capture range)", "required" },
+    { "series", "UID", "the DICOM series to read when IMAGE is a directory (default: the first)", "" },
     { "target-quality", "Q", "mean q_area to reach, in (0, 1]", DefaultText(defaults->GetTargetQuality()) },
     { "initial", "sphere|surfacenets", "build the initial mesh instead of reading MESH", "" },
     { "radius", "MM", "sphere: radius", "" },
