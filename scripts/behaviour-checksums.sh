@@ -53,9 +53,9 @@ run extract torus-distance.nrrd --iso 0 --inside below --labels torus-mask.nrrd 
 # improve: a marching-cubes-like start (no relaxation) smoothed and swapped.
 run extract --phantom sphere --size 40 --relaxation none "sphere-none.vtk"
 run improve sphere-none.vtk improve-laplacian.vtk --swap regularity --smoothing laplacian --constraint centroid
-run improve sphere-none.vtk improve-volume.vtk --swap regularity --volume-preservation
+run improve sphere-none.vtk improve-volume.vtk --swap regularity --volume-preservation --smoothing laplacian
 run improve sphere-none.vtk improve-taubin.vtk --smoothing taubin --weights cotangent --swap delaunay
-run improve sphere-none.vtk improve-safe.vtk --smoothing laplacian --constraint safe --update immediate
+run improve sphere-none.vtk improve-safe.vtk --smoothing laplacian --constraint safe --update immediate --swap none
 run improve torus-snert.vtk improve-torus.vtk --swap regularity --smoothing laplacian --weights area
 # refine: the ED/ES/S protocol on the noisy chapter-4 sphere.
 run phantom chapter4-sphere chapter4.nrrd --size 48 --noise 2 --seed 3
