@@ -238,7 +238,8 @@ template <typename TImage>
 ExtractMeshType::Pointer
 RunSurfaceNets(const TImage * image, const ExtractSettings & s)
 {
-  using FilterType = itk::SurfaceNetsImageToMeshFilter<TImage, ExtractMeshType>;
+  // --labels files hold labels of up to 32 bits (FreeSurfer's, TotalSegmentator's, ITK-SNAP's).
+  using FilterType = itk::SurfaceNetsImageToMeshFilter<TImage, ExtractMeshType, itk::Image<unsigned int, 3>>;
   auto filter = FilterType::New();
   filter->SetInput(image);
   ConfigureFilter(filter.GetPointer(), s);
@@ -516,7 +517,11 @@ MakeExtractCommand()
       "L",
       "the object is the voxels equal to L (INPUT or --labels is a label image)",
       DefaultText(defaults.label) },
-    { "labels", "FILE", "segmentation whose --label voxels give the net, relaxed toward INPUT's iso-surface", "" },
+    { "labels",
+      "FILE",
+      "segmentation (integer labels, 0 to 2^32 - 1) whose --label voxels give the net, relaxed toward INPUT's "
+      "iso-surface",
+      "" },
     { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
     { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
     { "iterations", "N", "maximum relaxation iterations", DefaultText(defaults.iterations) },
