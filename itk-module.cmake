@@ -23,6 +23,7 @@ itk_module(MeshExtraction
     ITKRegistrationCommon
     ITKStatistics
     ITKImageNoise
+    ITKZLIB
   TEST_DEPENDS
     ITKTestKernel
     ITKGoogleTest
