@@ -220,7 +220,7 @@ ReadSurfaceMeshFile(const std::string & fileName)
 {
   const PolygonMesh polygons = ReadPolygonMeshFile(fileName);
   auto              mesh = TMesh::New();
-  if constexpr (Detail::IsQuadEdgeMesh<TMesh>::value)
+  if constexpr (detail::IsQuadEdgeMesh<TMesh>::value)
   {
     const IndexedTriangleMesh triangles = TriangulatePolygonMesh(polygons);
     RequireQuadEdgeMeshTriangles(triangles, "'" + fileName + "'");

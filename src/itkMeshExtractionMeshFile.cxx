@@ -40,7 +40,7 @@ MeshFileFormatFromFileName(const std::string & fileName)
   {
     return MeshFileFormat::Unknown;
   }
-  const std::string extension = MeshFileParsing::Lower(std::string_view(fileName).substr(dot + 1));
+  const std::string extension = detail::Lower(std::string_view(fileName).substr(dot + 1));
   static const std::pair<const char *, MeshFileFormat> table[] = {
     { "vtk", MeshFileFormat::VTKLegacy }, { "vtp", MeshFileFormat::VTKXMLPolyData },
     { "ply", MeshFileFormat::PLY },       { "stl", MeshFileFormat::STL },
@@ -88,7 +88,7 @@ ReadPolygonMeshFile(const std::string & fileName)
 PolygonMesh
 ReadPolygonMeshFile(const std::string & fileName, MeshFileFormat format)
 {
-  namespace P = MeshFileParsing;
+  namespace P = detail;
   switch (format)
   {
     case MeshFileFormat::VTKLegacy:
@@ -123,7 +123,7 @@ WritePolygonMeshFile(const std::string &          fileName,
                      MeshFileFormat               format,
                      const MeshFileWriteOptions & options)
 {
-  namespace P = MeshFileParsing;
+  namespace P = detail;
   switch (format)
   {
     case MeshFileFormat::VTKLegacy:
@@ -181,7 +181,7 @@ TriangulatePolygonMesh(const PolygonMesh & mesh)
     {
       TriangleIndices t0;
       TriangleIndices t1;
-      SplitQuad(out, c, t0, t1);
+      detail::SplitQuad(out, c, t0, t1);
       out.triangles.push_back(t0);
       out.triangles.push_back(t1);
       out.cellIds.insert(out.cellIds.end(), 2, p);
@@ -214,7 +214,7 @@ MakePolygonMesh(const IndexedTriangleMesh & mesh)
 // ------------------------------------------------------------------------------
 // Parsing helpers
 // ------------------------------------------------------------------------------
-namespace MeshFileParsing
+namespace detail
 {
 void
 FailToRead(const char * format, const std::string & fileName, const std::string & problem)
@@ -458,7 +458,7 @@ Cursor::RequireBytes(std::size_t size, const std::string & what)
   m_Position += size;
   return bytes;
 }
-} // namespace MeshFileParsing
+} // namespace detail
 
 } // namespace MeshExtraction
 } // namespace itk

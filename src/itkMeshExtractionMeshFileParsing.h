@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionMeshFileParsing_h
 #define itkMeshExtractionMeshFileParsing_h
 
@@ -37,7 +38,7 @@ namespace itk
 {
 namespace MeshExtraction
 {
-namespace MeshFileParsing
+namespace detail
 {
 /** Throws "Cannot read the <format> file '<fileName>': <problem>." */
 [[noreturn]] void
@@ -234,7 +235,7 @@ PolygonMesh
 ReadOFFFile(const std::string & fileName);
 void
 WriteOFFFile(const std::string & fileName, const PolygonMesh & mesh, const MeshFileWriteOptions & options);
-} // namespace MeshFileParsing
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -24,7 +24,7 @@ namespace itk
 {
 namespace MeshExtraction
 {
-namespace MeshFileParsing
+namespace detail
 {
 namespace
 {
@@ -192,6 +192,6 @@ WriteOBJFile(const std::string & fileName, const PolygonMesh & mesh, const MeshF
   }
   FinishWriting(out, Format, fileName);
 }
-} // namespace MeshFileParsing
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -26,7 +26,7 @@ namespace itk
 {
 namespace MeshExtraction
 {
-namespace MeshFileParsing
+namespace detail
 {
 namespace
 {
@@ -169,6 +169,6 @@ WriteOFFFile(const std::string & fileName, const PolygonMesh & mesh, const MeshF
   }
   FinishWriting(out, Format, fileName);
 }
-} // namespace MeshFileParsing
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -540,7 +540,7 @@ WritePLYFile(const std::string & fileName, const IndexedTriangleMesh & mesh)
     itkGenericExceptionMacro(<< "Cannot write the PLY file " << fileName << '.');
   }
 }
-namespace MeshFileParsing
+namespace detail
 {
 PolygonMesh
 ReadPLYPolygonFile(const std::string & fileName)
@@ -609,6 +609,6 @@ WritePLYPolygonFile(const std::string & fileName, const PolygonMesh & mesh, cons
   }
   FinishWriting(out, "PLY", fileName);
 }
-} // namespace MeshFileParsing
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

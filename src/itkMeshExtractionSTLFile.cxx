@@ -28,7 +28,7 @@ namespace itk
 {
 namespace MeshExtraction
 {
-namespace MeshFileParsing
+namespace detail
 {
 namespace
 {
@@ -327,6 +327,6 @@ WriteSTLFile(const std::string & fileName, const PolygonMesh & mesh, const MeshF
   }
   FinishWriting(out, Format, fileName);
 }
-} // namespace MeshFileParsing
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

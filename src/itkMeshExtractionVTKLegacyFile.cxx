@@ -25,7 +25,7 @@ namespace itk
 {
 namespace MeshExtraction
 {
-namespace MeshFileParsing
+namespace detail
 {
 namespace
 {
@@ -575,6 +575,6 @@ WriteVTKLegacyFile(const std::string & fileName, const PolygonMesh & mesh, const
   }
   FinishWriting(out, Format, fileName);
 }
-} // namespace MeshFileParsing
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -29,7 +29,7 @@ namespace itk
 {
 namespace MeshExtraction
 {
-namespace MeshFileParsing
+namespace detail
 {
 namespace
 {
@@ -740,6 +740,6 @@ WriteVTKXMLPolyDataFile(const std::string & fileName, const PolygonMesh & mesh, 
   out << "      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
   FinishWriting(out, Format, fileName);
 }
-} // namespace MeshFileParsing
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
