@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace itk
@@ -233,9 +234,48 @@ ReadSurfaceMeshFile(const std::string & fileName)
   return mesh;
 }
 
-/** \brief Writes the triangles of an itk::Mesh or itk::QuadEdgeMesh (quadrilaterals
- * split along their shorter diagonal; a QuadEdgeMesh's edge cells left out) in the
- * format the file name's extension names.
+/** The points and faces of an itk::Mesh or itk::QuadEdgeMesh as polygons: triangles,
+ * quadrilaterals and larger faces as they are (points compacted in the order of the
+ * point container); vertex and line cells (a QuadEdgeMesh's edges) are counted in
+ * numberOfIgnoredCells. A cell naming a point the mesh has not is an
+ * itk::ExceptionObject. */
+template <typename TMesh>
+PolygonMesh
+MakePolygonMeshFromMesh(const TMesh & mesh)
+{
+  PolygonMesh  out;
+  const auto * points = mesh.GetPoints();
+  const auto * cells = mesh.GetCells();
+  if (points == nullptr || points->Size() == 0 || cells == nullptr)
+  {
+    return out;
+  }
+  IndexedTriangleMesh              copy;
+  const detail::PointIdentifierMap map = detail::CopyPoints(*points, copy);
+  out.points = std::move(copy.points);
+  std::vector<std::uint32_t> corners;
+  for (auto it = cells->Begin(); it != cells->End(); ++it)
+  {
+    const auto * cell = it.Value();
+    if (cell == nullptr || cell->GetNumberOfPoints() < 3)
+    {
+      out.numberOfIgnoredCells += cell == nullptr ? 0 : 1;
+      continue;
+    }
+    corners.clear();
+    for (auto p = cell->PointIdsBegin(); p != cell->PointIdsEnd(); ++p)
+    {
+      corners.push_back(map.IndexOf(*p, it.Index()));
+    }
+    out.AddPolygon(corners.data(), corners.size());
+  }
+  return out;
+}
+
+/** \brief Writes the faces of an itk::Mesh or itk::QuadEdgeMesh (a QuadEdgeMesh's edge
+ * cells left out) in the format the file name's extension names: quadrilaterals and
+ * larger polygons as they are, except in STL, which holds only triangles (there they
+ * are split as TriangulatePolygonMesh splits them).
  * \ingroup MeshExtraction
  */
 template <typename TMesh>
@@ -244,7 +284,7 @@ WriteSurfaceMeshFile(const TMesh &                mesh,
                      const std::string &          fileName,
                      const MeshFileWriteOptions & options = MeshFileWriteOptions())
 {
-  WritePolygonMeshFile(fileName, MakePolygonMesh(MakeIndexedTriangleMesh(mesh)), options);
+  WritePolygonMeshFile(fileName, MakePolygonMeshFromMesh(mesh), options);
 }
 
 } // namespace MeshExtraction

@@ -170,8 +170,8 @@ RequireCountFits(const Cursor & cursor, std::uint64_t count, std::size_t bytesPe
   // (+1: the last item of a text section may end the file without a separator)
   if (count > (cursor.Remaining() + 1) / std::max<std::size_t>(bytesPerItem, 1))
   {
-    cursor.Fail("the header promises " + std::to_string(count) + ' ' + what + ", more than the " +
-                std::to_string(cursor.Remaining()) + " bytes left in the file can hold (a truncated file?)");
+    cursor.Fail(what + " (" + std::to_string(count) + " by the header) need more than the " +
+                std::to_string(cursor.Remaining()) + " bytes left in the file (a truncated file?)");
   }
 }
 

@@ -96,7 +96,7 @@ ReadOFFFile(const std::string & fileName)
   const auto vertices = static_cast<std::uint64_t>(counts[0]);
   const auto faces = static_cast<std::uint64_t>(counts[1]);
   RequirePointCount(cursor, vertices);
-  RequireCountFits(cursor, vertices, 6, "vertices");
+  RequireCountFits(cursor, vertices, 6, "the vertices");
   PolygonMesh mesh;
   mesh.points.reserve(static_cast<std::size_t>(vertices));
   for (std::uint64_t v = 0; v < vertices; ++v)
@@ -112,7 +112,7 @@ ReadOFFFile(const std::string & fileName)
     }
     mesh.points.push_back(CheckedPoint(cursor, xyz[0], xyz[1], xyz[2], v));
   }
-  RequireCountFits(cursor, faces, 2, "faces");
+  RequireCountFits(cursor, faces, 2, "the faces");
   std::vector<std::uint32_t> corners;
   for (std::uint64_t f = 0; f < faces; ++f)
   {

@@ -24,6 +24,7 @@
 
 #include "itkMeshExtractionMeshFile.h"
 #include "itkMeshExtractionTestHelpers.h"
+#include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include <gtest/gtest.h>
 
@@ -191,6 +192,80 @@ TEST(MeshFile, RoundTripsSTLWithSharedVertices)
         const double     tolerance = encoding == Options::Encoding::ASCII ? 0.0 : 1e-5;
         EXPECT_NEAR((expected - found).GetNorm(), 0.0, tolerance);
       }
+    }
+  }
+}
+
+TEST(MeshFile, RoundTripsSurfaceNetsMeshesInEveryFormat)
+{
+  // A mesh the module makes (SurfaceNets of the torus phantom, as triangles and as
+  // quadrilaterals) written in every format and encoding and read back: the same points
+  // and faces (STL: triangles only, single precision in binary), and, read into a
+  // QuadEdgeMesh, a closed, consistently oriented surface again.
+  using Triangulation = itk::SurfaceNetsImageToMeshFilterEnums::Triangulation;
+  struct Case
+  {
+    const char *              name;
+    Options::Encoding         encoding;
+    Options::VTKLegacyVersion version;
+  };
+  const Case cases[] = {
+    { "a42.vtk", Options::Encoding::ASCII, Options::VTKLegacyVersion::V4_2 },
+    { "b51.vtk", Options::Encoding::Binary, Options::VTKLegacyVersion::V5_1 },
+    { "b.vtp", Options::Encoding::Default, Options::VTKLegacyVersion::V4_2 },
+    { "a.vtp", Options::Encoding::ASCII, Options::VTKLegacyVersion::V4_2 },
+    { "b.ply", Options::Encoding::Binary, Options::VTKLegacyVersion::V4_2 },
+    { "a.obj", Options::Encoding::Default, Options::VTKLegacyVersion::V4_2 },
+    { "a.off", Options::Encoding::Default, Options::VTKLegacyVersion::V4_2 },
+    { "b.stl", Options::Encoding::Binary, Options::VTKLegacyVersion::V4_2 },
+    { "a.stl", Options::Encoding::ASCII, Options::VTKLegacyVersion::V4_2 },
+  };
+  const auto phantom = MeshExtractionTest::MakePhantom(ME::PhantomShape::Torus);
+  for (const auto triangulation : { Triangulation::ShortestDiagonal, Triangulation::Quadrilaterals })
+  {
+    auto filter = itk::SurfaceNetsImageToMeshFilter<itk::Image<float, 3>>::New();
+    filter->SetInput(phantom.image);
+    filter->SetInsideIsAboveIsoValue(false);
+    filter->SetTriangulation(triangulation);
+    filter->Update();
+    const ME::PolygonMesh mesh = ME::MakePolygonMeshFromMesh(*filter->GetOutput());
+    const bool            quads = triangulation == Triangulation::Quadrilaterals;
+    ASSERT_GT(mesh.NumberOfPolygons(), 100u);
+    EXPECT_EQ(mesh.PolygonSize(0), quads ? 4u : 3u);
+    const ME::IndexedTriangleMesh triangles = ME::TriangulatePolygonMesh(mesh);
+    for (const Case & c : cases)
+    {
+      SCOPED_TRACE(std::string(c.name) + (quads ? " (quadrilaterals)" : " (triangles)"));
+      Options options;
+      options.encoding = c.encoding;
+      options.vtkLegacyVersion = c.version;
+      const std::string path = TemporaryPath(std::string(quads ? "surfacenets-q-" : "surfacenets-t-") + c.name);
+      ME::WritePolygonMeshFile(path, mesh, options);
+      const ME::PolygonMesh back = ME::ReadPolygonMeshFile(path);
+      if (ME::MeshFileFormatFromFileName(path) != ME::MeshFileFormat::STL)
+      {
+        ExpectSamePoints(mesh, back, 0.0);
+        ExpectSamePolygons(mesh, back);
+      }
+      else
+      {
+        ASSERT_EQ(back.NumberOfPolygons(), triangles.triangles.size());
+        EXPECT_EQ(back.points.size(), mesh.points.size());
+        const double tolerance = c.encoding == Options::Encoding::ASCII ? 0.0 : 1e-4;
+        for (std::size_t f = 0; f < back.NumberOfPolygons(); ++f)
+        {
+          for (unsigned int k = 0; k < 3; ++k)
+          {
+            const ME::Vec3 d = triangles.points[triangles.triangles[f][k]] - back.points[back.Polygon(f)[k]];
+            ASSERT_LE(d.GetNorm(), tolerance) << "triangle " << f;
+          }
+        }
+      }
+      const auto                    surface = ME::ReadSurfaceMeshFile<itk::QuadEdgeMesh<double, 3>>(path);
+      const ME::IndexedTriangleMesh read = ME::MakeIndexedTriangleMesh(*surface);
+      EXPECT_EQ(read.triangles.size(), triangles.triangles.size());
+      EXPECT_FALSE(ME::FindTriangleMeshDefects(read).Any());
+      EXPECT_EQ(ME::BuildMeshTopology(read).numberOfBoundaryEdges, 0u);
     }
   }
 }
@@ -388,6 +463,63 @@ TEST(MeshFile, RefusesHeadersThatLieAboutCounts)
     std::string::npos);
   EXPECT_NE(ReadError("none.vtk", "not a mesh\n").find("not a VTK legacy file"), std::string::npos);
   EXPECT_NE(ReadError("empty.obj", "").find("it is empty"), std::string::npos);
+}
+
+TEST(MeshFile, RefusesHostileFilesOfEveryFormat)
+{
+  // Issue 32: a coordinate that is not finite, an index out of range or a count that
+  // would allocate far more than the file holds, in each format: an error naming the
+  // file and the problem, before any large allocation.
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  auto              edit = [](std::string text, const std::string & from, const std::string & to) {
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::string   vtp = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" byte_order=\"LittleEndian\">\n"
+                            "<PolyData>\n<Piece NumberOfPoints=\"3\" NumberOfPolys=\"1\">\n<Points><DataArray "
+                            "type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0</DataArray>"
+                            "</Points>\n<Polys><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2"
+                            "</DataArray><DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray>"
+                            "</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  std::string         binarySTL(80, ' ');
+  const std::uint32_t facets = 0xFFFFFFF0u; // about 200 GB of facets in a 134-byte file
+  binarySTL.append(reinterpret_cast<const char *>(&facets), 4);
+  binarySTL.append(50, '\0');
+  struct Case
+  {
+    const char * name;
+    std::string  text;
+    const char * problem;
+  };
+  const Case cases[] = {
+    { "nan.ply", edit(ply, "1 0 0", "nan 0 0"), "" },
+    { "index.ply", edit(ply, "3 0 1 2", "3 0 1 3"), "names the vertex 3" },
+    { "vertices.ply", edit(ply, "vertex 3", "vertex 4294967295"), "more than the supported" },
+    { "corners.ply", edit(ply, "3 0 1 2", "200000000 0 1 2"), "more than the file holds" },
+    { "faces.ply", edit(ply, "face 1", "face 3000000000"), "" },
+    { "nan.vtp", edit(vtp, "0 0 0 1 0 0", "0 0 0 1 nan 0"), "point 1 has a coordinate that is not a finite number" },
+    { "index.vtp", edit(vtp, ">0 1 2<", ">0 1 7<"), "names point 7" },
+    { "points.vtp", edit(vtp, "NumberOfPoints=\"3\"", "NumberOfPoints=\"3000000000\""), "more than the file can hold" },
+    { "polys.vtp", edit(vtp, "NumberOfPolys=\"1\"", "NumberOfPolys=\"3000000000\""), "more than the file can hold" },
+    { "facets.stl", binarySTL, "header promises 4294967280" },
+    { "negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", "" },
+    { "inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n", "not a finite number" },
+    { "vertices.off", "OFF\n4000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "more than the" },
+    { "corners.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n", "" },
+    { "nan.stl",
+      "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 nan 0\n"
+      "endloop\nendfacet\nendsolid x\n",
+      "not a finite number" },
+  };
+  for (const Case & c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    const std::string message = ReadError(c.name, c.text);
+    EXPECT_FALSE(message.empty());
+    EXPECT_NE(message.find(c.problem), std::string::npos) << message;
+  }
 }
 
 TEST(MeshFile, RefusesTruncatedFilesOfEveryFormat)
