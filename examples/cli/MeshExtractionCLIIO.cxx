@@ -26,6 +26,7 @@
 #include "itkImageFileWriter.h"
 #include "itkImageIOFactory.h"
 #include "itkImageSeriesReader.h"
+#include "itkMeshExtractionMeshFile.h"
 #include "itkMeshFileReader.h"
 #include "itkMeshFileWriter.h"
 #include "itksys/SystemTools.hxx"
@@ -186,21 +187,40 @@ MESHEXTRACTION_CLI_IMAGE_IO(double);
 // ------------------------------------------------------------------------------
 // Meshes
 // ------------------------------------------------------------------------------
+namespace
+{
+/** Whether the module reads and writes the format the extension names itself (VTK
+ * legacy 4.2 and 5.1, VTP, PLY, STL, OBJ, OFF), checking every count, index and
+ * coordinate; other formats (GIFTI, BYU, FreeSurfer) go through ITK's mesh IO. */
+bool
+IsModuleFormat(const std::string & path)
+{
+  return ME::MeshFileFormatFromFileName(path) != ME::MeshFileFormat::Unknown;
+}
+
+IOMeshType::Pointer
+ReadWithITK(const std::string & path)
+{
+  auto reader = itk::MeshFileReader<IOMeshType>::New();
+  reader->SetFileName(path);
+  reader->Update();
+  return reader->GetOutput();
+}
+} // namespace
+
 IOMeshType::Pointer
 ReadMeshFile(const std::string & path)
 {
   RequireReadable(path);
-  auto reader = itk::MeshFileReader<IOMeshType>::New();
-  reader->SetFileName(path);
+  IOMeshType::Pointer mesh;
   try
   {
-    reader->Update();
+    mesh = IsModuleFormat(path) ? ME::ReadSurfaceMeshFile<IOMeshType>(path) : ReadWithITK(path);
   }
   catch (const itk::ExceptionObject & e)
   {
-    itkGenericExceptionMacro("cannot read mesh '" << path << "': " << e.GetDescription());
+    itkGenericExceptionMacro("cannot read mesh '" << path << "': " << Describe(e));
   }
-  IOMeshType::Pointer mesh = reader->GetOutput();
   if (mesh->GetNumberOfPoints() == 0 || mesh->GetNumberOfCells() == 0)
   {
     itkGenericExceptionMacro("cannot read mesh '" << path << "': it has " << mesh->GetNumberOfPoints() << " points and "
@@ -214,25 +234,36 @@ ReadManifoldMesh(const std::string & path, const std::string & command)
 {
   const IOMeshType::Pointer     mesh = ReadMeshFile(path);
   const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  // Found before any face is added: ITK's QuadEdgeMesh crashes on some non-manifold
+  // vertices and drops other faces.
+  const ME::TriangleMeshDefects defects = ME::FindTriangleMeshDefects(triangles);
+  std::string                   problem = defects.Any() ? defects.Describe(triangles) : std::string();
   auto                          out = QuadEdgeMeshType::New();
-  try
+  if (problem.empty())
   {
-    ME::FillMesh(triangles, *out);
+    try
+    {
+      ME::FillMesh(triangles, *out);
+    }
+    catch (const itk::ExceptionObject & e)
+    {
+      problem = Describe(e);
+    }
   }
-  catch (const itk::ExceptionObject & e)
+  if (!problem.empty())
   {
     itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which '"
-                                 << command << "' needs: " << Describe(e));
+                                 << command << "' needs: " << problem);
   }
   return out;
 }
 
 namespace
 {
-/** Writes the triangles of any ITK mesh through a plain itk::Mesh. */
+/** Writes the triangles of any ITK mesh through a plain itk::Mesh and ITK's mesh IO. */
 template <typename TMesh>
 void
-WriteTriangles(const TMesh * mesh, const std::string & path)
+WriteWithITK(const TMesh * mesh, const std::string & path)
 {
   const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
   auto                          out = IOMeshType::New();
@@ -240,13 +271,26 @@ WriteTriangles(const TMesh * mesh, const std::string & path)
   auto writer = itk::MeshFileWriter<IOMeshType>::New();
   writer->SetFileName(path);
   writer->SetInput(out);
+  writer->Update();
+}
+
+template <typename TMesh>
+void
+WriteFaces(const TMesh * mesh, const std::string & path)
+{
   try
   {
-    writer->Update();
+    // VTK legacy files stay ITK's, as every earlier version of the tool wrote them.
+    if (IsModuleFormat(path) && ME::MeshFileFormatFromFileName(path) != ME::MeshFileFormat::VTKLegacy)
+    {
+      ME::WriteSurfaceMeshFile(*mesh, path);
+      return;
+    }
+    WriteWithITK(mesh, path);
   }
   catch (const itk::ExceptionObject & e)
   {
-    itkGenericExceptionMacro("cannot write mesh '" << path << "': " << e.GetDescription());
+    itkGenericExceptionMacro("cannot write mesh '" << path << "': " << Describe(e));
   }
 }
 } // namespace
@@ -254,13 +298,13 @@ WriteTriangles(const TMesh * mesh, const std::string & path)
 void
 WriteMeshFile(const IOMeshType * mesh, const std::string & path)
 {
-  WriteTriangles(mesh, path);
+  WriteFaces(mesh, path);
 }
 
 void
 WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path)
 {
-  WriteTriangles(mesh, path);
+  WriteFaces(mesh, path);
 }
 
 } // namespace MeshExtractionCLI

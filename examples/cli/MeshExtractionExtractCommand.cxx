@@ -399,11 +399,11 @@ MakeExtractCommand()
   c.usage = "INPUT OUTPUT [options]   |   meshextraction extract --phantom NAME OUTPUT [options]";
   c.description = "Extracts a closed, 2-manifold, outward-oriented triangle mesh from a 3-D image (any format ITK\n"
                   "reads, or a DICOM series directory) with SurfaceNets (thesis chapter 3) and writes it in the\n"
-                  "format OUTPUT's extension names (.vtk, .obj, .off, .gii, .byu). The object is the voxels\n"
-                  "above (or below) --iso; or the voxels equal to --label in a label image; or a segmentation\n"
-                  "(--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface. SNERT (the\n"
-                  "default for greyscale input) puts the nodes on the trilinear iso-surface and spaces them out;\n"
-                  "SNA only averages. Coordinates are physical (spacing, origin, direction).";
+                  "format OUTPUT's extension names (.vtk, .vtp, .ply, .stl, .obj, .off, .gii, .byu). The object\n"
+                  "is the voxels above (or below) --iso; or the voxels equal to --label in a label image; or a\n"
+                  "segmentation (--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface.\n"
+                  "SNERT (the default for greyscale input) puts the nodes on the trilinear iso-surface and spaces\n"
+                  "them out; SNA only averages. Coordinates are physical (spacing, origin, direction).";
   c.options = {
     { "iso", "V", "iso-value of the object's boundary", "0 for a phantom" },
     { "inside", "above|below", "which side of --iso is the object", defaults.insideAbove ? "above" : "below" },

@@ -470,7 +470,8 @@ MakeRefineCommand()
   c.usage = "IMAGE MESH OUT --max-deviation D [options]   |   meshextraction refine IMAGE OUT --initial "
             "sphere|surfacenets --max-deviation D [options]";
   c.description = "Thesis chapter 4 (ScaleSpaceEdgeMeshRefinementFilter): for data a threshold cannot segment (noise,\n"
-                  "MRI bias fields). Starting from a rough mesh MESH (any format ITK reads), a geodesic sphere or a\n"
+                  "MRI bias fields). Starting from a rough mesh MESH (.vtk, .vtp, .ply, .stl, .obj, .off or another\n"
+                  "format ITK reads), a geodesic sphere or a\n"
                   "SurfaceNets mesh of a threshold, it alternates scale-space edge detection (ED: every vertex moves\n"
                   "along the image gradient to the edge found coarse-to-fine from sigma = D down to the voxel\n"
                   "length), regularity edge swaps (ES) and centroid smoothing (S) until the mean q_area reaches\n"
