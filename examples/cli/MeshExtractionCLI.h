@@ -271,7 +271,7 @@ ReadManifoldMesh(const std::string & path, const std::string & command);
 /** Writes a mesh (a QuadEdgeMesh's edge cells are left out) in the format its
  * extension names: VTP, PLY, STL, OBJ and OFF by the module (its faces as they are,
  * except in STL, which holds only triangles), VTK legacy and the other formats by
- * ITK's mesh IO (as triangles). */
+ * ITK's mesh IO. */
 void
 WriteMeshFile(const IOMeshType * mesh, const std::string & path);
 void

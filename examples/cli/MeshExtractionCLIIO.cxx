@@ -260,14 +260,14 @@ ReadManifoldMesh(const std::string & path, const std::string & command)
 
 namespace
 {
-/** Writes the triangles of any ITK mesh through a plain itk::Mesh and ITK's mesh IO. */
+/** Writes the faces of any ITK mesh (quadrilaterals as they are, not split: those of
+ * --triangulation quads) through a plain itk::Mesh and ITK's mesh IO. */
 template <typename TMesh>
 void
 WriteWithITK(const TMesh * mesh, const std::string & path)
 {
-  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
-  auto                          out = IOMeshType::New();
-  ME::FillMesh(triangles, *out);
+  auto out = IOMeshType::New();
+  ME::FillMeshWithPolygons(ME::MakePolygonMeshFromMesh(*mesh), *out);
   auto writer = itk::MeshFileWriter<IOMeshType>::New();
   writer->SetFileName(path);
   writer->SetInput(out);
