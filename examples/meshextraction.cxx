@@ -29,6 +29,7 @@
 
 #include "MeshExtractionCLI.h"
 
+#include <csignal>
 #include <iomanip>
 #include <iostream>
 
@@ -59,6 +60,11 @@ PrintUsage(std::ostream & os, const std::vector<Command> & commands)
 int
 main(int argc, char * argv[])
 {
+#ifdef SIGXFSZ
+  // A write beyond the file-size limit then fails (and is reported, the partial file
+  // removed) instead of ending the process with the output half written.
+  std::signal(SIGXFSZ, SIG_IGN);
+#endif
   const std::vector<Command> commands = Commands();
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" || std::string(argv[1]) == "help")
   {

@@ -199,6 +199,12 @@ ChooseOption(const Arguments & args, const std::string & name, const OptionNames
 std::string
 Describe(const itk::ExceptionObject & e);
 
+/** A UsageError unless `output` (named `what` in the message, e.g. "OUTPUT" or
+ * "--csv") is a file other than each of the `inputs` given (empty ones are skipped):
+ * no command overwrites what it reads. */
+void
+RequireNotAnInput(const std::string & output, const std::vector<std::string> & inputs, const std::string & what);
+
 /** --size, --spacing, --origin and --direction: the grid of a phantom. */
 std::vector<OptionSpec>
 GridOptions();

@@ -31,6 +31,9 @@
 #include "itkMeshFileWriter.h"
 #include "itksys/SystemTools.hxx"
 
+#include <chrono>
+#include <filesystem>
+
 namespace MeshExtractionCLI
 {
 namespace
@@ -260,36 +263,101 @@ ReadManifoldMesh(const std::string & path, const std::string & command)
 
 namespace
 {
-/** Writes the faces of any ITK mesh (quadrilaterals as they are, not split: those of
- * --triangulation quads) through a plain itk::Mesh and ITK's mesh IO. */
-template <typename TMesh>
+/** Writes faces (quadrilaterals as they are, not split: those of --triangulation quads)
+ * through a plain itk::Mesh and ITK's mesh IO. */
 void
-WriteWithITK(const TMesh * mesh, const std::string & path)
+WriteWithITK(const ME::PolygonMesh & faces, const std::string & path)
 {
   auto out = IOMeshType::New();
-  ME::FillMeshWithPolygons(ME::MakePolygonMeshFromMesh(*mesh), *out);
+  ME::FillMeshWithPolygons(faces, *out);
   auto writer = itk::MeshFileWriter<IOMeshType>::New();
   writer->SetFileName(path);
   writer->SetInput(out);
   writer->Update();
 }
 
-template <typename TMesh>
-void
-WriteFaces(const TMesh * mesh, const std::string & path)
+/** A name beside `path`, with its extension (which names the format), for the file
+ * being written: it replaces `path` only once it is whole. */
+std::string
+PartialFileName(const std::string & path)
 {
+  const std::filesystem::path p(path);
+  const auto                  tag = std::chrono::steady_clock::now().time_since_epoch().count();
+  return (p.parent_path() / ("." + p.stem().string() + ".partial-" + std::to_string(tag) + p.extension().string()))
+    .string();
+}
+
+/** Reads a written file back where the module reads its format: a disk that filled
+ * up or a size limit leaves fewer points or faces than were written. */
+void
+RequireWrittenWhole(const ME::PolygonMesh & faces, const std::string & written)
+{
+  if (!IsModuleFormat(written))
+  {
+    return;
+  }
+  ME::PolygonMesh back;
+  try
+  {
+    back = ME::ReadPolygonMeshFile(written);
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    itkGenericExceptionMacro(
+      "the file written does not read back whole (a full disk or a size limit?): " << Describe(e));
+  }
+  // STL holds triangles only, and joins its corners by their coordinates.
+  const bool  stl = ME::MeshFileFormatFromFileName(written) == ME::MeshFileFormat::STL;
+  std::size_t expectedFaces = faces.NumberOfPolygons();
+  if (stl)
+  {
+    expectedFaces = 0;
+    for (std::size_t f = 0; f < faces.NumberOfPolygons(); ++f)
+    {
+      expectedFaces += faces.PolygonSize(f) >= 3 ? faces.PolygonSize(f) - 2 : 0;
+    }
+  }
+  if ((!stl && back.points.size() != faces.points.size()) || back.NumberOfPolygons() != expectedFaces)
+  {
+    itkGenericExceptionMacro("the file written holds " << back.points.size() << " points and "
+                                                       << back.NumberOfPolygons() << " faces, not "
+                                                       << faces.points.size() << " and " << expectedFaces);
+  }
+}
+
+/** Writes to a partial file beside `path`, reads it back, then renames it to `path`:
+ * a failed write never replaces an existing file. */
+void
+WriteFaces(const ME::PolygonMesh & faces, const std::string & path)
+{
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(path, error) && !fs::is_regular_file(path, error))
+  {
+    itkGenericExceptionMacro("cannot write mesh '" << path << "': it exists and is not a regular file");
+  }
+  const std::string partial = PartialFileName(path);
   try
   {
     // VTK legacy files stay ITK's, as every earlier version of the tool wrote them.
     if (IsModuleFormat(path) && ME::MeshFileFormatFromFileName(path) != ME::MeshFileFormat::VTKLegacy)
     {
-      ME::WriteSurfaceMeshFile(*mesh, path);
-      return;
+      ME::WritePolygonMeshFile(partial, faces);
     }
-    WriteWithITK(mesh, path);
+    else
+    {
+      WriteWithITK(faces, partial);
+    }
+    RequireWrittenWhole(faces, partial);
+    fs::rename(partial, path, error);
+    if (error)
+    {
+      itkGenericExceptionMacro("cannot rename the written file to it: " << error.message());
+    }
   }
   catch (const itk::ExceptionObject & e)
   {
+    fs::remove(partial, error);
     itkGenericExceptionMacro("cannot write mesh '" << path << "': " << Describe(e));
   }
 }
@@ -298,13 +366,13 @@ WriteFaces(const TMesh * mesh, const std::string & path)
 void
 WriteMeshFile(const IOMeshType * mesh, const std::string & path)
 {
-  WriteFaces(mesh, path);
+  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path);
 }
 
 void
 WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path)
 {
-  WriteFaces(mesh, path);
+  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path);
 }
 
 } // namespace MeshExtractionCLI

@@ -363,7 +363,10 @@ RunExtract(const Arguments & args)
   {
     throw UsageError(fromPhantom ? "with --phantom give only OUTPUT" : "'extract' expects INPUT and OUTPUT");
   }
-  const std::string output = args.positional.back();
+  const std::string              output = args.positional.back();
+  const std::vector<std::string> inputs{ fromPhantom ? std::string() : args.positional[0], args.Get("labels") };
+  RequireNotAnInput(output, inputs, "OUTPUT");
+  RequireNotAnInput(args.Get("report-json"), inputs, "--report-json");
   ReadObjectOptions(args, fromPhantom, s);
   ReadMeshingOptions(args, s);
 

@@ -285,9 +285,10 @@ PrintBeforeAndAfter(const MeasuredMesh & before, const MeasuredMesh & after)
 int
 RunImprove(const Arguments & args)
 {
-  const ImproveOptions     o = ReadImproveOptions(args);
-  const std::string &      inputPath = args.positional[0];
-  const std::string &      outputPath = args.positional[1];
+  const ImproveOptions o = ReadImproveOptions(args);
+  const std::string &  inputPath = args.positional[0];
+  const std::string &  outputPath = args.positional[1];
+  RequireNotAnInput(outputPath, { inputPath }, "OUTPUT");
   Stopwatch                watch;
   ImproveMeshType::Pointer mesh = ReadManifoldMesh(inputPath, "improve");
   std::cerr << "improve " << inputPath << ": " << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces()

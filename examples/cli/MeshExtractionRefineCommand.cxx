@@ -418,6 +418,9 @@ RunRefine(const Arguments & args)
 
   const std::string &            imagePath = args.positional[0];
   const std::string &            outputPath = args.positional.back();
+  const std::vector<std::string> inputs(args.positional.begin(), args.positional.end() - 1);
+  RequireNotAnInput(outputPath, inputs, "OUT");
+  RequireNotAnInput(args.Get("csv"), args.positional, "--csv");
   Stopwatch                      watch;
   const RefineImageType::Pointer image = ReadRefineImage(imagePath);
   RefineMeshType::Pointer        mesh = InitialMesh(args, initial, image);
