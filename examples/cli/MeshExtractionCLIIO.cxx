@@ -28,6 +28,7 @@
 #include "itkImageSeriesReader.h"
 #include "itkMeshExtractionMeshFile.h"
 #include "itkMeshFileReader.h"
+#include "itkMeshIOFactory.h"
 #include "itkMeshFileWriter.h"
 #include "itksys/SystemTools.hxx"
 
@@ -201,9 +202,24 @@ IsModuleFormat(const std::string & path)
   return ME::MeshFileFormatFromFileName(path) != ME::MeshFileFormat::Unknown;
 }
 
+/** An error naming the formats there are, unless ITK's mesh IO has one for `path`
+ * (which it picks by the extension or, to read, by the file's contents). */
+void
+RequireITKMeshIO(const std::string & path, itk::IOFileModeEnum mode)
+{
+  if (itk::MeshIOFactory::CreateMeshIO(path.c_str(), mode).IsNull())
+  {
+    itkGenericExceptionMacro("no mesh format MeshExtraction or ITK "
+                             << (mode == itk::IOFileModeEnum::ReadMode ? "reads" : "writes")
+                             << " goes by its name (the module: .vtk, .vtp, .ply, .stl, .obj, .off; ITK's mesh IO "
+                                "also .gii, .byu, .fsa, .fsb)");
+  }
+}
+
 IOMeshType::Pointer
 ReadWithITK(const std::string & path)
 {
+  RequireITKMeshIO(path, itk::IOFileModeEnum::ReadMode);
   auto reader = itk::MeshFileReader<IOMeshType>::New();
   reader->SetFileName(path);
   reader->Update();
@@ -268,6 +284,7 @@ namespace
 void
 WriteWithITK(const ME::PolygonMesh & faces, const std::string & path)
 {
+  RequireITKMeshIO(path, itk::IOFileModeEnum::WriteMode);
   auto out = IOMeshType::New();
   ME::FillMeshWithPolygons(faces, *out);
   auto writer = itk::MeshFileWriter<IOMeshType>::New();
