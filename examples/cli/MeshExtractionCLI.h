@@ -35,6 +35,7 @@
 #include "itkImplicitSurfaceFunction.h"
 #include "itkMesh.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionMeshFile.h"
 #include "itkMeshExtractionMeshSurfaceDistanceReport.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionTriangleMeshQualityReport.h"
@@ -274,14 +275,26 @@ ReadMeshFile(const std::string & path);
 QuadEdgeMeshType::Pointer
 ReadManifoldMesh(const std::string & path, const std::string & command);
 
+/** How a command writes its mesh: --mesh-encoding and --vtk-version (either one makes
+ * the module, not ITK, write a .vtk file: in version 4.2 or 5.1, ASCII or binary). */
+struct MeshWriteSettings
+{
+  ME::MeshFileWriteOptions options;
+  bool                     moduleWritesVTK{ false };
+};
+std::vector<OptionSpec>
+MeshWriteOptions();
+MeshWriteSettings
+ReadMeshWriteSettings(const Arguments & args);
+
 /** Writes a mesh (a QuadEdgeMesh's edge cells are left out) in the format its
  * extension names: VTP, PLY, STL, OBJ and OFF by the module (its faces as they are,
  * except in STL, which holds only triangles), VTK legacy and the other formats by
  * ITK's mesh IO. */
 void
-WriteMeshFile(const IOMeshType * mesh, const std::string & path);
+WriteMeshFile(const IOMeshType * mesh, const std::string & path, const MeshWriteSettings & settings = {});
 void
-WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path);
+WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path, const MeshWriteSettings & settings = {});
 
 // ------------------------------------------------------------------------------
 // Measuring meshes (MeshExtractionCLIMeasurement.cxx)

@@ -345,7 +345,7 @@ RequireWrittenWhole(const ME::PolygonMesh & faces, const std::string & written)
 /** Writes to a partial file beside `path`, reads it back, then renames it to `path`:
  * a failed write never replaces an existing file. */
 void
-WriteFaces(const ME::PolygonMesh & faces, const std::string & path)
+WriteFaces(const ME::PolygonMesh & faces, const std::string & path, const MeshWriteSettings & settings)
 {
   namespace fs = std::filesystem;
   std::error_code error;
@@ -357,9 +357,10 @@ WriteFaces(const ME::PolygonMesh & faces, const std::string & path)
   try
   {
     // VTK legacy files stay ITK's, as every earlier version of the tool wrote them.
-    if (IsModuleFormat(path) && ME::MeshFileFormatFromFileName(path) != ME::MeshFileFormat::VTKLegacy)
+    const bool vtk = ME::MeshFileFormatFromFileName(path) == ME::MeshFileFormat::VTKLegacy;
+    if (IsModuleFormat(path) && (!vtk || settings.moduleWritesVTK))
     {
-      ME::WritePolygonMeshFile(partial, faces);
+      ME::WritePolygonMeshFile(partial, faces, settings.options);
     }
     else
     {
@@ -381,15 +382,46 @@ WriteFaces(const ME::PolygonMesh & faces, const std::string & path)
 } // namespace
 
 void
-WriteMeshFile(const IOMeshType * mesh, const std::string & path)
+WriteMeshFile(const IOMeshType * mesh, const std::string & path, const MeshWriteSettings & settings)
 {
-  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path);
+  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path, settings);
 }
 
 void
-WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path)
+WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path, const MeshWriteSettings & settings)
 {
-  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path);
+  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path, settings);
+}
+
+std::vector<OptionSpec>
+MeshWriteOptions()
+{
+  return {
+    { "mesh-encoding",
+      "ascii|binary",
+      "encoding of a .vtk, .vtp, .ply or .stl OUTPUT",
+      "binary for .vtp, .ply, .stl; ascii for .vtk" },
+    { "vtk-version", "4.2|5.1", "write a .vtk OUTPUT in this version of the legacy format (5.1: VTK 9's)", "" }
+  };
+}
+
+MeshWriteSettings
+ReadMeshWriteSettings(const Arguments & args)
+{
+  using Options = ME::MeshFileWriteOptions;
+  MeshWriteSettings s;
+  s.options.encoding =
+    ChooseOption<Options::Encoding>(args,
+                                    "mesh-encoding",
+                                    { { "ascii", Options::Encoding::ASCII }, { "binary", Options::Encoding::Binary } },
+                                    Options::Encoding::Default);
+  s.options.vtkLegacyVersion = ChooseOption<Options::VTKLegacyVersion>(
+    args,
+    "vtk-version",
+    { { "4.2", Options::VTKLegacyVersion::V4_2 }, { "5.1", Options::VTKLegacyVersion::V5_1 } },
+    Options::VTKLegacyVersion::V4_2);
+  s.moduleWritesVTK = args.Has("mesh-encoding") || args.Has("vtk-version");
+  return s;
 }
 
 } // namespace MeshExtractionCLI

@@ -366,6 +366,7 @@ RunExtract(const Arguments & args)
   const std::string              output = args.positional.back();
   const std::vector<std::string> inputs{ fromPhantom ? std::string() : args.positional[0], args.Get("labels") };
   RequireNotAnInput(output, inputs, "OUTPUT");
+  const MeshWriteSettings writeSettings = ReadMeshWriteSettings(args);
   RequireNotAnInput(args.Get("report-json"), inputs, "--report-json");
   ReadObjectOptions(args, fromPhantom, s);
   ReadMeshingOptions(args, s);
@@ -381,7 +382,7 @@ RunExtract(const Arguments & args)
     std::cerr << "extract: " << args.positional[0] << '\n';
     mesh = ExtractFromFile(args.positional[0], s);
   }
-  WriteMeshFile(mesh.GetPointer(), output);
+  WriteMeshFile(mesh.GetPointer(), output, writeSettings);
   std::cerr << "  wrote " << output << " (" << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfCells()
             << " faces)\n";
   if (args.Has("report") || args.Has("report-json"))
@@ -445,6 +446,10 @@ MakeExtractCommand()
     { "report-json", "FILE", "write the report as JSON", "" },
   };
   for (const auto & o : GridOptions())
+  {
+    c.options.push_back(o);
+  }
+  for (const auto & o : MeshWriteOptions())
   {
     c.options.push_back(o);
   }

@@ -421,6 +421,7 @@ RunRefine(const Arguments & args)
   const std::vector<std::string> inputs(args.positional.begin(), args.positional.end() - 1);
   RequireNotAnInput(outputPath, inputs, "OUT");
   RequireNotAnInput(args.Get("csv"), args.positional, "--csv");
+  const MeshWriteSettings        writeSettings = ReadMeshWriteSettings(args);
   Stopwatch                      watch;
   const RefineImageType::Pointer image = ReadRefineImage(imagePath);
   RefineMeshType::Pointer        mesh = InitialMesh(args, initial, image);
@@ -451,7 +452,7 @@ RunRefine(const Arguments & args)
   {
     WriteStepsCSV(filter, args.Get("csv"));
   }
-  WriteMeshFile(output.GetPointer(), outputPath);
+  WriteMeshFile(output.GetPointer(), outputPath, writeSettings);
   std::cerr << "  wrote " << outputPath << " (" << output->GetNumberOfPoints() << " points, "
             << output->GetNumberOfFaces() << " triangles) in " << std::fixed << std::setprecision(2) << watch.Seconds()
             << " s\n"
@@ -517,6 +518,10 @@ MakeRefineCommand()
     { "report", "", "print the quality (and phantom distances) before and after", "" },
     { "threads", "N", "work units (0: all cores)", "0" },
   };
+  for (const auto & o : MeshWriteOptions())
+  {
+    c.options.push_back(o);
+  }
   c.minimumPositional = 2;
   c.maximumPositional = 3;
   c.run = RunRefine;
