@@ -283,6 +283,13 @@ TEST(MeshFile, ReadsIntoITKMeshesAndWritesThem)
   ASSERT_TRUE(mesh->GetCell(6, cell));
   EXPECT_EQ(cell->GetType(), itk::CellGeometryEnum::POLYGON_CELL);
   EXPECT_EQ(cell->GetNumberOfPoints(), 5u);
+  // Written back from the itk::Mesh: the quadrilateral and the pentagon as they are
+  // (the coordinates in the mesh's single precision).
+  const std::string again = TemporaryPath("mixed-again.ply");
+  ME::WriteSurfaceMeshFile(*mesh, again);
+  const ME::PolygonMesh mixed = ME::ReadPolygonMeshFile(again);
+  ExpectSamePoints(MakeMixedMesh(), mixed, 1e-7);
+  ExpectSamePolygons(MakeMixedMesh(), mixed);
 
   const std::string out = TemporaryPath("sphere.ply");
   auto              sphere = itk::QuadEdgeMesh<double, 3>::New();
