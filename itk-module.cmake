@@ -21,6 +21,7 @@ itk_module(MeshExtraction
     ITKOptimizers
     ITKRegistrationCommon
     ITKStatistics
+    ITKZLIB
   TEST_DEPENDS
     ITKTestKernel
     ITKGoogleTest

@@ -32,6 +32,7 @@
 #include "itkVersion.h"
 #include "itksys/SystemTools.hxx"
 
+#include <csignal>
 #include <iomanip>
 #include <iostream>
 
@@ -73,6 +74,11 @@ CommandOfProgramName(const char * argv0)
 int
 main(int argc, char * argv[])
 {
+#ifdef SIGXFSZ
+  // A write beyond the file-size limit then fails (and is reported, the partial file
+  // removed) instead of ending the process with the output half written.
+  std::signal(SIGXFSZ, SIG_IGN);
+#endif
   const std::vector<Command> commands = Commands();
   // meshextraction-extract ARGS is meshextraction extract ARGS (3D Slicer calls a CLI
   // module's executable with the module's own arguments only).

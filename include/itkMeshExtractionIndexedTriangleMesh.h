@@ -166,6 +166,19 @@ FillMesh(const IndexedTriangleMesh & in, TMesh & mesh)
     for (std::size_t f = 0; f < in.triangles.size(); ++f)
     {
       const auto & t = in.triangles[f];
+      // A vertex whose fan of triangles is closed already can take no other triangle
+      // without becoming non-manifold, which ITK's QuadEdgeMesh does not refuse but
+      // crashes on (RequireQuadEdgeMeshTriangles finds every such vertex beforehand).
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        const auto * edge = t[k] < mesh.GetNumberOfPoints() ? mesh.FindEdge(t[k]) : nullptr;
+        if (edge != nullptr && edge->IsOriginInternal())
+        {
+          itkGenericExceptionMacro("MeshExtraction: the QuadEdgeMesh cannot take triangle "
+                                   << f << " (" << t[0] << ", " << t[1] << ", " << t[2] << "): the triangles around "
+                                   << "point " << t[k] << " are closed already, so it would be a non-manifold vertex.");
+        }
+      }
       if (mesh.AddFaceTriangle(t[0], t[1], t[2]) == nullptr)
       {
         itkGenericExceptionMacro("MeshExtraction: the QuadEdgeMesh refused triangle "

@@ -16,7 +16,9 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionPLY.h"
+#include "itkMeshExtractionMeshFileParsing.h"
 #include "itkMacro.h"
+#include "itkNumberToString.h"
 
 #include <cmath>
 #include <cstdint>
@@ -246,6 +248,33 @@ public:
     return Decode(type, bytes);
   }
 
+  /** A list's number of items: a whole number no larger than the bytes left. */
+  std::size_t
+  ReadCount(PLYType type)
+  {
+    const double count = Read(type);
+    if (!(count >= 0.0 && count == std::floor(count)))
+    {
+      Fail(m_FileName, "a list has " + std::to_string(count) + " items");
+    }
+    // Only long lists need the (slower) look at the position.
+    if (count > 1024.0)
+    {
+      const auto position = static_cast<std::size_t>(std::max<std::streamoff>(m_In.tellg(), 0));
+      if (count > static_cast<double>(m_FileSize - std::min(position, m_FileSize)))
+      {
+        Fail(m_FileName, "a list has " + std::to_string(count) + " items, more than the file holds");
+      }
+    }
+    return static_cast<std::size_t>(count);
+  }
+
+  void
+  SetFileSize(std::size_t size)
+  {
+    m_FileSize = size;
+  }
+
 private:
   static bool
   IsLittleEndian()
@@ -293,10 +322,11 @@ private:
   std::istream &      m_In;
   PLYFormat           m_Format;
   const std::string & m_FileName;
+  std::size_t         m_FileSize{ std::numeric_limits<std::size_t>::max() };
 };
 
 void
-ReadVertices(ValueReader & reader, const PLYElement & element, IndexedTriangleMesh & mesh, const std::string & fileName)
+ReadVertices(ValueReader & reader, const PLYElement & element, PolygonMesh & mesh, const std::string & fileName)
 {
   int axis[3] = { -1, -1, -1 };
   for (std::size_t k = 0; k < element.properties.size(); ++k)
@@ -311,13 +341,17 @@ ReadVertices(ValueReader & reader, const PLYElement & element, IndexedTriangleMe
   {
     Fail(fileName, "its vertices have no x, y and z properties");
   }
+  if (element.count >= std::numeric_limits<std::uint32_t>::max())
+  {
+    Fail(fileName, "it has " + std::to_string(element.count) + " vertices, more than the supported 2^32 - 1");
+  }
   for (std::uint64_t v = 0; v < element.count; ++v)
   {
     Vec3 p = MakeVec3(0, 0, 0);
     for (std::size_t k = 0; k < element.properties.size(); ++k)
     {
       const PLYProperty & property = element.properties[k];
-      const std::size_t   items = property.isList ? static_cast<std::size_t>(reader.Read(property.countType)) : 1;
+      const std::size_t   items = property.isList ? reader.ReadCount(property.countType) : 1;
       for (std::size_t i = 0; i < items; ++i)
       {
         const double value = reader.Read(property.type);
@@ -335,39 +369,44 @@ ReadVertices(ValueReader & reader, const PLYElement & element, IndexedTriangleMe
       Fail(fileName, "vertex " + std::to_string(v) + " has a coordinate that is not finite");
     }
     mesh.points.push_back(p);
-    mesh.pointIds.push_back(static_cast<IdentifierType>(v));
   }
 }
 
+/** The faces' vertex_indices (or vertex_index) lists as polygons; other properties
+ * are read past. */
 void
-ReadFaces(ValueReader & reader, const PLYElement & element, IndexedTriangleMesh & mesh, const std::string & fileName)
+ReadFaces(ValueReader & reader, const PLYElement & element, PolygonMesh & mesh, const std::string & fileName)
 {
+  std::vector<std::uint32_t> corners;
   for (std::uint64_t f = 0; f < element.count; ++f)
   {
     for (const PLYProperty & property : element.properties)
     {
-      const double items = property.isList ? reader.Read(property.countType) : 1.0;
-      if (!(items >= 0.0 && items <= 1e6))
+      const bool isIndices = property.isList && (property.name == "vertex_indices" || property.name == "vertex_index");
+      const std::size_t items = property.isList ? reader.ReadCount(property.countType) : 1;
+      corners.clear();
+      for (std::size_t i = 0; i < items; ++i)
       {
-        Fail(fileName, "face " + std::to_string(f) + " has an impossible number of corners");
-      }
-      std::vector<std::uint32_t> corners;
-      for (std::size_t i = 0; i < static_cast<std::size_t>(items); ++i)
-      {
-        const double index = reader.Read(property.type);
-        if (!(index >= 0.0 && index < static_cast<double>(mesh.points.size())))
+        const double value = reader.Read(property.type);
+        if (!isIndices)
+        {
+          continue;
+        }
+        if (!(value >= 0.0 && value < static_cast<double>(mesh.points.size())))
         {
           Fail(fileName,
-               "face " + std::to_string(f) + " names the vertex " + std::to_string(index) + ", but there are " +
+               "face " + std::to_string(f) + " names the vertex " + std::to_string(value) + ", but there are " +
                  std::to_string(mesh.points.size()));
         }
-        corners.push_back(static_cast<std::uint32_t>(index));
+        corners.push_back(static_cast<std::uint32_t>(value));
       }
-      const bool isIndices = property.isList && (property.name == "vertex_indices" || property.name == "vertex_index");
-      for (std::size_t k = 1; isIndices && k + 1 < corners.size(); ++k)
+      if (isIndices && corners.size() >= 3)
       {
-        mesh.triangles.push_back({ corners[0], corners[k], corners[k + 1] });
-        mesh.cellIds.push_back(static_cast<IdentifierType>(f));
+        mesh.AddPolygon(corners.data(), corners.size());
+      }
+      else if (isIndices)
+      {
+        ++mesh.numberOfIgnoredCells;
       }
     }
   }
@@ -380,7 +419,7 @@ SkipElement(ValueReader & reader, const PLYElement & element)
   {
     for (const PLYProperty & property : element.properties)
     {
-      const std::size_t items = property.isList ? static_cast<std::size_t>(reader.Read(property.countType)) : 1;
+      const std::size_t items = property.isList ? reader.ReadCount(property.countType) : 1;
       for (std::size_t i = 0; i < items; ++i)
       {
         reader.Read(property.type);
@@ -388,24 +427,27 @@ SkipElement(ValueReader & reader, const PLYElement & element)
     }
   }
 }
-} // namespace
 
-IndexedTriangleMesh
-ReadPLYFile(const std::string & fileName)
+/** The vertices and faces of a PLY file. */
+PolygonMesh
+ReadPolygons(const std::string & fileName)
 {
-  std::ifstream in(fileName, std::ios::binary);
+  std::ifstream in(fileName, std::ios::binary | std::ios::ate);
   if (!in)
   {
     Fail(fileName, "no such file, or not readable");
   }
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
   const PLYHeader header = ReadHeader(in, fileName);
   if (header.format == PLYFormat::ASCII)
   {
     in.imbue(std::locale::classic());
   }
-  ValueReader         reader(in, header.format, fileName);
-  IndexedTriangleMesh mesh;
-  bool                haveVertices = false;
+  ValueReader reader(in, header.format, fileName);
+  reader.SetFileSize(size > 0 ? static_cast<std::size_t>(size) : 0);
+  PolygonMesh mesh;
+  bool        haveVertices = false;
   for (const PLYElement & element : header.elements)
   {
     if (element.name == "vertex")
@@ -429,6 +471,30 @@ ReadPLYFile(const std::string & fileName)
   if (!haveVertices)
   {
     Fail(fileName, "it has no vertex element");
+  }
+  return mesh;
+}
+
+} // namespace
+
+IndexedTriangleMesh
+ReadPLYFile(const std::string & fileName)
+{
+  const PolygonMesh   polygons = ReadPolygons(fileName);
+  IndexedTriangleMesh mesh;
+  mesh.points = polygons.points;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+  {
+    mesh.pointIds.push_back(static_cast<IdentifierType>(v));
+  }
+  for (std::size_t f = 0; f < polygons.NumberOfPolygons(); ++f)
+  {
+    const std::uint32_t * corners = polygons.Polygon(f);
+    for (std::size_t k = 1; k + 1 < polygons.PolygonSize(f); ++k)
+    {
+      mesh.triangles.push_back({ corners[0], corners[k], corners[k + 1] });
+      mesh.cellIds.push_back(static_cast<IdentifierType>(f));
+    }
   }
   return mesh;
 }
@@ -474,5 +540,75 @@ WritePLYFile(const std::string & fileName, const IndexedTriangleMesh & mesh)
     itkGenericExceptionMacro(<< "Cannot write the PLY file " << fileName << '.');
   }
 }
+namespace detail
+{
+PolygonMesh
+ReadPLYPolygonFile(const std::string & fileName)
+{
+  return ReadPolygons(fileName);
+}
+
+void
+WritePLYPolygonFile(const std::string & fileName, const PolygonMesh & mesh, const MeshFileWriteOptions & options)
+{
+  const bool    ascii = options.encoding == MeshFileWriteOptions::Encoding::ASCII;
+  std::ofstream out = OpenForWriting("PLY", fileName);
+  out << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian") << " 1.0\ncomment MeshExtraction\nelement vertex "
+      << mesh.points.size() << "\nproperty double x\nproperty double y\nproperty double z\nelement face "
+      << mesh.NumberOfPolygons() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  NumberToString<double> text;
+  auto                   put = [&out](auto value) {
+    unsigned char bytes[sizeof(value)];
+    std::memcpy(bytes, &value, sizeof(value));
+    if (!IsLittleEndian())
+    {
+      std::reverse(bytes, bytes + sizeof(value));
+    }
+    out.write(reinterpret_cast<const char *>(bytes), sizeof(value));
+  };
+  for (const Vec3 & p : mesh.points)
+  {
+    if (ascii)
+    {
+      out << text(p[0]) << ' ' << text(p[1]) << ' ' << text(p[2]) << '\n';
+      continue;
+    }
+    put(p[0]);
+    put(p[1]);
+    put(p[2]);
+  }
+  for (std::size_t f = 0; f < mesh.NumberOfPolygons(); ++f)
+  {
+    if (mesh.PolygonSize(f) > 255)
+    {
+      FailToWrite("PLY", fileName, "polygon " + std::to_string(f) + " has more than 255 corners");
+    }
+    if (ascii)
+    {
+      out << mesh.PolygonSize(f);
+    }
+    else
+    {
+      put(static_cast<std::uint8_t>(mesh.PolygonSize(f)));
+    }
+    for (std::size_t k = 0; k < mesh.PolygonSize(f); ++k)
+    {
+      if (ascii)
+      {
+        out << ' ' << mesh.Polygon(f)[k];
+      }
+      else
+      {
+        put(static_cast<std::int32_t>(mesh.Polygon(f)[k]));
+      }
+    }
+    if (ascii)
+    {
+      out << '\n';
+    }
+  }
+  FinishWriting(out, "PLY", fileName);
+}
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

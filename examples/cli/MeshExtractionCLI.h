@@ -35,6 +35,7 @@
 #include "itkImplicitSurfaceFunction.h"
 #include "itkMesh.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionMeshFile.h"
 #include "itkMeshExtractionMeshSurfaceDistanceReport.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionTriangleMeshQualityReport.h"
@@ -201,6 +202,12 @@ ChooseOption(const Arguments & args, const std::string & name, const OptionNames
 std::string
 Describe(const itk::ExceptionObject & e);
 
+/** A UsageError unless `output` (named `what` in the message, e.g. "OUTPUT" or
+ * "--csv") is a file other than each of the `inputs` given (empty ones are skipped):
+ * no command overwrites what it reads. */
+void
+RequireNotAnInput(const std::string & output, const std::vector<std::string> & inputs, const std::string & what);
+
 /** --size, --spacing, --origin and --direction: the grid of a phantom. */
 std::vector<OptionSpec>
 GridOptions();
@@ -275,24 +282,40 @@ template <typename TImage>
 void
 WriteImageFile(const TImage * image, const std::string & path);
 
-/** Reads a mesh in any format ITK reads (VTK, OBJ, OFF, GIFTI, BYU, FreeSurfer) as a
- * plain itk::Mesh, so that even broken meshes can be measured. */
+/** Reads a mesh as a plain itk::Mesh, so that even broken meshes can be measured: VTK
+ * legacy (4.2 and 5.1), VTP, PLY, STL, OBJ and OFF through the module's readers, which
+ * refuse a truncated file, an index out of range or a coordinate that is not finite
+ * with the problem; any other format ITK reads (GIFTI, BYU, FreeSurfer) through ITK. */
 IOMeshType::Pointer
 ReadMeshFile(const std::string & path);
 
-/** Reads any mesh ITK reads into a triangle QuadEdgeMesh (quadrilaterals are split
- * along their shorter diagonal); a mesh the quad-edge structure cannot hold
- * (non-manifold edges, inconsistent orientation) is refused with an error that says
- * `command` needs one. */
+/** Reads a mesh (as ReadMeshFile) into a triangle QuadEdgeMesh (quadrilaterals are
+ * split along their shorter diagonal); a mesh the quad-edge structure cannot hold
+ * (non-manifold edges or vertices, inconsistent orientation) is refused, before any
+ * face is added, with an error that names its defects and says `command` needs one. */
 QuadEdgeMeshType::Pointer
 ReadManifoldMesh(const std::string & path, const std::string & command);
 
-/** Writes the triangles of a mesh (a QuadEdgeMesh's edge cells are left out) in the
- * format its extension names. */
+/** How a command writes its mesh: --mesh-encoding and --vtk-version (either one makes
+ * the module, not ITK, write a .vtk file: in version 4.2 or 5.1, ASCII or binary). */
+struct MeshWriteSettings
+{
+  ME::MeshFileWriteOptions options;
+  bool                     moduleWritesVTK{ false };
+};
+std::vector<OptionSpec>
+MeshWriteOptions();
+MeshWriteSettings
+ReadMeshWriteSettings(const Arguments & args);
+
+/** Writes a mesh (a QuadEdgeMesh's edge cells are left out) in the format its
+ * extension names: VTP, PLY, STL, OBJ and OFF by the module (its faces as they are,
+ * except in STL, which holds only triangles), VTK legacy and the other formats by
+ * ITK's mesh IO. */
 void
-WriteMeshFile(const IOMeshType * mesh, const std::string & path);
+WriteMeshFile(const IOMeshType * mesh, const std::string & path, const MeshWriteSettings & settings = {});
 void
-WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path);
+WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path, const MeshWriteSettings & settings = {});
 
 // ------------------------------------------------------------------------------
 // Measuring meshes (MeshExtractionCLIMeasurement.cxx)

@@ -23,10 +23,42 @@
 #include "itkCommand.h"
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 namespace MeshExtractionCLI
 {
+namespace
+{
+/** Whether two paths name one file: the same file where both exist (hard links
+ * included), else the same absolute path with "." and ".." resolved. */
+bool
+SameFile(const std::string & a, const std::string & b)
+{
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(a, error) && fs::exists(b, error))
+  {
+    return fs::equivalent(a, b, error);
+  }
+  const fs::path canonicalA = fs::weakly_canonical(a, error);
+  const fs::path canonicalB = fs::weakly_canonical(b, error);
+  return !error && canonicalA == canonicalB;
+}
+} // namespace
+
+void
+RequireNotAnInput(const std::string & output, const std::vector<std::string> & inputs, const std::string & what)
+{
+  for (const std::string & input : inputs)
+  {
+    if (!input.empty() && !output.empty() && SameFile(output, input))
+    {
+      throw UsageError(what + " '" + output + "' is the input '" + input + "': refusing to overwrite an input");
+    }
+  }
+}
+
 std::string
 Describe(const itk::ExceptionObject & e)
 {

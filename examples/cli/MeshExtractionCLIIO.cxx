@@ -26,16 +26,20 @@
 #include "itkImageFileWriter.h"
 #include "itkImageIOFactory.h"
 #include "itkImageSeriesReader.h"
+#include "itkMeshExtractionMeshFile.h"
 #include "itkMeshFileReader.h"
+#include "itkMeshIOFactory.h"
 #include "itkMeshFileWriter.h"
 #include "itk_zlib.h"
 #include "itksys/SystemTools.hxx"
 
 #include <algorithm>
-#include <cstring>
-#include <cstdint>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -401,21 +405,55 @@ MESHEXTRACTION_CLI_IMAGE_IO(double);
 // ------------------------------------------------------------------------------
 // Meshes
 // ------------------------------------------------------------------------------
+namespace
+{
+/** Whether the module reads and writes the format the extension names itself (VTK
+ * legacy 4.2 and 5.1, VTP, PLY, STL, OBJ, OFF), checking every count, index and
+ * coordinate; other formats (GIFTI, BYU, FreeSurfer) go through ITK's mesh IO. */
+bool
+IsModuleFormat(const std::string & path)
+{
+  return ME::MeshFileFormatFromFileName(path) != ME::MeshFileFormat::Unknown;
+}
+
+/** An error naming the formats there are, unless ITK's mesh IO has one for `path`
+ * (which it picks by the extension or, to read, by the file's contents). */
+void
+RequireITKMeshIO(const std::string & path, itk::IOFileModeEnum mode)
+{
+  if (itk::MeshIOFactory::CreateMeshIO(path.c_str(), mode).IsNull())
+  {
+    itkGenericExceptionMacro("no mesh format MeshExtraction or ITK "
+                             << (mode == itk::IOFileModeEnum::ReadMode ? "reads" : "writes")
+                             << " goes by its name (the module: .vtk, .vtp, .ply, .stl, .obj, .off; ITK's mesh IO "
+                                "also .gii, .byu, .fsa, .fsb)");
+  }
+}
+
+IOMeshType::Pointer
+ReadWithITK(const std::string & path)
+{
+  RequireITKMeshIO(path, itk::IOFileModeEnum::ReadMode);
+  auto reader = itk::MeshFileReader<IOMeshType>::New();
+  reader->SetFileName(path);
+  reader->Update();
+  return reader->GetOutput();
+}
+} // namespace
+
 IOMeshType::Pointer
 ReadMeshFile(const std::string & path)
 {
   RequireReadable(path);
-  auto reader = itk::MeshFileReader<IOMeshType>::New();
-  reader->SetFileName(path);
+  IOMeshType::Pointer mesh;
   try
   {
-    reader->Update();
+    mesh = IsModuleFormat(path) ? ME::ReadSurfaceMeshFile<IOMeshType>(path) : ReadWithITK(path);
   }
   catch (const itk::ExceptionObject & e)
   {
-    itkGenericExceptionMacro("cannot read mesh '" << path << "': " << e.GetDescription());
+    itkGenericExceptionMacro("cannot read mesh '" << path << "': " << Describe(e));
   }
-  IOMeshType::Pointer mesh = reader->GetOutput();
   if (mesh->GetNumberOfPoints() == 0 || mesh->GetNumberOfCells() == 0)
   {
     itkGenericExceptionMacro("cannot read mesh '" << path << "': it has " << mesh->GetNumberOfPoints() << " points and "
@@ -429,53 +467,175 @@ ReadManifoldMesh(const std::string & path, const std::string & command)
 {
   const IOMeshType::Pointer     mesh = ReadMeshFile(path);
   const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
+  // Found before any face is added: ITK's QuadEdgeMesh crashes on some non-manifold
+  // vertices and drops other faces.
+  const ME::TriangleMeshDefects defects = ME::FindTriangleMeshDefects(triangles);
+  std::string                   problem = defects.Any() ? defects.Describe(triangles) : std::string();
   auto                          out = QuadEdgeMeshType::New();
-  try
+  if (problem.empty())
   {
-    ME::FillMesh(triangles, *out);
+    try
+    {
+      ME::FillMesh(triangles, *out);
+    }
+    catch (const itk::ExceptionObject & e)
+    {
+      problem = Describe(e);
+    }
   }
-  catch (const itk::ExceptionObject & e)
+  if (!problem.empty())
   {
     itkGenericExceptionMacro("'" << path << "' is not a manifold, consistently oriented triangle mesh, which '"
-                                 << command << "' needs: " << Describe(e));
+                                 << command << "' needs: " << problem);
   }
   return out;
 }
 
 namespace
 {
-/** Writes the triangles of any ITK mesh through a plain itk::Mesh. */
-template <typename TMesh>
+/** Writes faces (quadrilaterals as they are, not split: those of --triangulation quads)
+ * through a plain itk::Mesh and ITK's mesh IO. */
 void
-WriteTriangles(const TMesh * mesh, const std::string & path)
+WriteWithITK(const ME::PolygonMesh & faces, const std::string & path)
 {
-  const ME::IndexedTriangleMesh triangles = ME::MakeIndexedTriangleMesh(*mesh);
-  auto                          out = IOMeshType::New();
-  ME::FillMesh(triangles, *out);
+  RequireITKMeshIO(path, itk::IOFileModeEnum::WriteMode);
+  auto out = IOMeshType::New();
+  ME::FillMeshWithPolygons(faces, *out);
   auto writer = itk::MeshFileWriter<IOMeshType>::New();
   writer->SetFileName(path);
   writer->SetInput(out);
+  writer->Update();
+}
+
+/** A name beside `path`, with its extension (which names the format), for the file
+ * being written: it replaces `path` only once it is whole. */
+std::string
+PartialFileName(const std::string & path)
+{
+  const std::filesystem::path p(path);
+  const auto                  tag = std::chrono::steady_clock::now().time_since_epoch().count();
+  return (p.parent_path() / ("." + p.stem().string() + ".partial-" + std::to_string(tag) + p.extension().string()))
+    .string();
+}
+
+/** Reads a written file back where the module reads its format: a disk that filled
+ * up or a size limit leaves fewer points or faces than were written. */
+void
+RequireWrittenWhole(const ME::PolygonMesh & faces, const std::string & written)
+{
+  if (!IsModuleFormat(written))
+  {
+    return;
+  }
+  ME::PolygonMesh back;
   try
   {
-    writer->Update();
+    back = ME::ReadPolygonMeshFile(written);
   }
   catch (const itk::ExceptionObject & e)
   {
-    itkGenericExceptionMacro("cannot write mesh '" << path << "': " << e.GetDescription());
+    itkGenericExceptionMacro(
+      "the file written does not read back whole (a full disk or a size limit?): " << Describe(e));
+  }
+  // STL holds triangles only, and joins its corners by their coordinates.
+  const bool  stl = ME::MeshFileFormatFromFileName(written) == ME::MeshFileFormat::STL;
+  std::size_t expectedFaces = faces.NumberOfPolygons();
+  if (stl)
+  {
+    expectedFaces = 0;
+    for (std::size_t f = 0; f < faces.NumberOfPolygons(); ++f)
+    {
+      expectedFaces += faces.PolygonSize(f) >= 3 ? faces.PolygonSize(f) - 2 : 0;
+    }
+  }
+  if ((!stl && back.points.size() != faces.points.size()) || back.NumberOfPolygons() != expectedFaces)
+  {
+    itkGenericExceptionMacro("the file written holds " << back.points.size() << " points and "
+                                                       << back.NumberOfPolygons() << " faces, not "
+                                                       << faces.points.size() << " and " << expectedFaces);
+  }
+}
+
+/** Writes to a partial file beside `path`, reads it back, then renames it to `path`:
+ * a failed write never replaces an existing file. */
+void
+WriteFaces(const ME::PolygonMesh & faces, const std::string & path, const MeshWriteSettings & settings)
+{
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(path, error) && !fs::is_regular_file(path, error))
+  {
+    itkGenericExceptionMacro("cannot write mesh '" << path << "': it exists and is not a regular file");
+  }
+  const std::string partial = PartialFileName(path);
+  try
+  {
+    // VTK legacy files stay ITK's, as every earlier version of the tool wrote them.
+    const bool vtk = ME::MeshFileFormatFromFileName(path) == ME::MeshFileFormat::VTKLegacy;
+    if (IsModuleFormat(path) && (!vtk || settings.moduleWritesVTK))
+    {
+      ME::WritePolygonMeshFile(partial, faces, settings.options);
+    }
+    else
+    {
+      WriteWithITK(faces, partial);
+    }
+    RequireWrittenWhole(faces, partial);
+    fs::rename(partial, path, error);
+    if (error)
+    {
+      itkGenericExceptionMacro("cannot rename the written file to it: " << error.message());
+    }
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    fs::remove(partial, error);
+    itkGenericExceptionMacro("cannot write mesh '" << path << "': " << Describe(e));
   }
 }
 } // namespace
 
 void
-WriteMeshFile(const IOMeshType * mesh, const std::string & path)
+WriteMeshFile(const IOMeshType * mesh, const std::string & path, const MeshWriteSettings & settings)
 {
-  WriteTriangles(mesh, path);
+  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path, settings);
 }
 
 void
-WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path)
+WriteMeshFile(const QuadEdgeMeshType * mesh, const std::string & path, const MeshWriteSettings & settings)
 {
-  WriteTriangles(mesh, path);
+  WriteFaces(ME::MakePolygonMeshFromMesh(*mesh), path, settings);
+}
+
+std::vector<OptionSpec>
+MeshWriteOptions()
+{
+  return {
+    { "mesh-encoding",
+      "ascii|binary",
+      "encoding of a .vtk, .vtp, .ply or .stl OUTPUT",
+      "binary for .vtp, .ply, .stl; ascii for .vtk" },
+    { "vtk-version", "4.2|5.1", "write a .vtk OUTPUT in this version of the legacy format (5.1: VTK 9's)", "" }
+  };
+}
+
+MeshWriteSettings
+ReadMeshWriteSettings(const Arguments & args)
+{
+  using Options = ME::MeshFileWriteOptions;
+  MeshWriteSettings s;
+  s.options.encoding =
+    ChooseOption<Options::Encoding>(args,
+                                    "mesh-encoding",
+                                    { { "ascii", Options::Encoding::ASCII }, { "binary", Options::Encoding::Binary } },
+                                    Options::Encoding::Default);
+  s.options.vtkLegacyVersion = ChooseOption<Options::VTKLegacyVersion>(
+    args,
+    "vtk-version",
+    { { "4.2", Options::VTKLegacyVersion::V4_2 }, { "5.1", Options::VTKLegacyVersion::V5_1 } },
+    Options::VTKLegacyVersion::V4_2);
+  s.moduleWritesVTK = args.Has("mesh-encoding") || args.Has("vtk-version");
+  return s;
 }
 
 } // namespace MeshExtractionCLI

@@ -421,7 +421,11 @@ RunExtract(const Arguments & args)
   {
     throw UsageError(fromPhantom ? "with --phantom give only OUTPUT" : "'extract' expects INPUT and OUTPUT");
   }
-  const std::string output = args.positional.back();
+  const std::string              output = args.positional.back();
+  const std::vector<std::string> inputs{ fromPhantom ? std::string() : args.positional[0], args.Get("labels") };
+  RequireNotAnInput(output, inputs, "OUTPUT");
+  const MeshWriteSettings writeSettings = ReadMeshWriteSettings(args);
+  RequireNotAnInput(args.Get("report-json"), inputs, "--report-json");
   ReadObjectOptions(args, fromPhantom, s);
   ReadMeshingOptions(args, s);
 
@@ -436,7 +440,7 @@ RunExtract(const Arguments & args)
     std::cerr << "extract: " << args.positional[0] << '\n';
     mesh = ExtractFromFile(args.positional[0], s);
   }
-  WriteMeshFile(mesh.GetPointer(), output);
+  WriteMeshFile(mesh.GetPointer(), output, writeSettings);
   std::cerr << "  wrote " << output << " (" << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfCells()
             << " faces)\n";
   if (args.Has("report") || args.Has("report-json"))
@@ -505,11 +509,11 @@ MakeExtractCommand()
   c.usage = "INPUT OUTPUT [options]   |   meshextraction extract --phantom NAME OUTPUT [options]";
   c.description = "Extracts a closed, 2-manifold, outward-oriented triangle mesh from a 3-D image (any format ITK\n"
                   "reads, or a DICOM series directory) with SurfaceNets (thesis chapter 3) and writes it in the\n"
-                  "format OUTPUT's extension names (.vtk, .obj, .off, .gii, .byu). The object is the voxels\n"
-                  "above (or below) --iso; or the voxels equal to --label in a label image; or a segmentation\n"
-                  "(--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface. SNERT (the\n"
-                  "default for greyscale input) puts the nodes on the trilinear iso-surface and spaces them out;\n"
-                  "SNA only averages. Coordinates are physical (spacing, origin, direction).";
+                  "format OUTPUT's extension names (.vtk, .vtp, .ply, .stl, .obj, .off, .gii, .byu). The object\n"
+                  "is the voxels above (or below) --iso; or the voxels equal to --label in a label image; or a\n"
+                  "segmentation (--labels FILE, voxels equal to --label) relaxed toward INPUT's --iso surface.\n"
+                  "SNERT (the default for greyscale input) puts the nodes on the trilinear iso-surface and spaces\n"
+                  "them out; SNA only averages. Coordinates are physical (spacing, origin, direction).";
   c.options = {
     { "iso", "V", "iso-value of the object's boundary", "0 for a phantom" },
     { "inside", "above|below", "which side of --iso is the object", defaults.insideAbove ? "above" : "below" },
@@ -558,6 +562,10 @@ MakeExtractCommand()
     { "report-json", "FILE", "write the report as JSON", "" },
   };
   for (const auto & o : GridOptions())
+  {
+    c.options.push_back(o);
+  }
+  for (const auto & o : MeshWriteOptions())
   {
     c.options.push_back(o);
   }

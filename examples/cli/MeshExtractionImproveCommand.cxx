@@ -289,9 +289,11 @@ PrintBeforeAndAfter(const MeasuredMesh & before, const MeasuredMesh & after)
 int
 RunImprove(const Arguments & args)
 {
-  const ImproveOptions     o = ReadImproveOptions(args);
-  const std::string &      inputPath = args.positional[0];
-  const std::string &      outputPath = args.positional[1];
+  const ImproveOptions o = ReadImproveOptions(args);
+  const std::string &  inputPath = args.positional[0];
+  const std::string &  outputPath = args.positional[1];
+  RequireNotAnInput(outputPath, { inputPath }, "OUTPUT");
+  const MeshWriteSettings  writeSettings = ReadMeshWriteSettings(args);
   Stopwatch                watch;
   ImproveMeshType::Pointer mesh = ReadManifoldMesh(inputPath, "improve");
   std::cerr << "improve " << inputPath << ": " << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces()
@@ -313,7 +315,7 @@ RunImprove(const Arguments & args)
   {
     mesh = SmoothTaubin(mesh, o, args);
   }
-  WriteMeshFile(mesh.GetPointer(), outputPath);
+  WriteMeshFile(mesh.GetPointer(), outputPath, writeSettings);
   std::cerr << "  wrote " << outputPath << " in " << std::fixed << std::setprecision(2) << watch.Seconds() << " s\n"
             << std::defaultfloat;
   if (args.Has("report"))
@@ -383,6 +385,10 @@ MakeImproveCommand()
       DefaultText(swapDefaults->GetMinimumQAreaRatio()) },
     { "report", "", "print the quality before and after", "" },
   };
+  for (const auto & o : MeshWriteOptions())
+  {
+    c.options.push_back(o);
+  }
   c.minimumPositional = 2;
   c.maximumPositional = 2;
   c.run = RunImprove;

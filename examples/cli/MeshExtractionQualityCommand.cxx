@@ -117,6 +117,10 @@ ExitStatus(const std::vector<MeasuredMesh> & results, const Arguments & args)
 int
 RunQuality(const Arguments & args)
 {
+  for (const char * option : { "json", "csv" })
+  {
+    RequireNotAnInput(args.Get(option), args.positional, std::string("--") + option);
+  }
   const QualityReferences   references = ReadReferences(args);
   std::vector<MeasuredMesh> results;
   for (const std::string & path : args.positional)

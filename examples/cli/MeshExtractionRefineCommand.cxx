@@ -442,6 +442,10 @@ RunRefine(const Arguments & args)
 
   const std::string &            imagePath = args.positional[0];
   const std::string &            outputPath = args.positional.back();
+  const std::vector<std::string> inputs(args.positional.begin(), args.positional.end() - 1);
+  RequireNotAnInput(outputPath, inputs, "OUT");
+  RequireNotAnInput(args.Get("csv"), args.positional, "--csv");
+  const MeshWriteSettings        writeSettings = ReadMeshWriteSettings(args);
   Stopwatch                      watch;
   const RefineImageType::Pointer image = ReadRefineImage(imagePath);
   CheckDeviationWithinImage(s.deviation, image.GetPointer());
@@ -473,7 +477,7 @@ RunRefine(const Arguments & args)
   {
     WriteStepsCSV(filter, args.Get("csv"));
   }
-  WriteMeshFile(output.GetPointer(), outputPath);
+  WriteMeshFile(output.GetPointer(), outputPath, writeSettings);
   std::cerr << "  wrote " << outputPath << " (" << output->GetNumberOfPoints() << " points, "
             << output->GetNumberOfFaces() << " triangles) in " << std::fixed << std::setprecision(2) << watch.Seconds()
             << " s\n"
@@ -495,7 +499,8 @@ MakeRefineCommand()
   c.usage = "IMAGE MESH OUT --max-deviation D [options]   |   meshextraction refine IMAGE OUT --initial "
             "sphere|surfacenets --max-deviation D [options]";
   c.description = "Thesis chapter 4 (ScaleSpaceEdgeMeshRefinementFilter): for data a threshold cannot segment (noise,\n"
-                  "MRI bias fields). Starting from a rough mesh MESH (any format ITK reads), a geodesic sphere or a\n"
+                  "MRI bias fields). Starting from a rough mesh MESH (.vtk, .vtp, .ply, .stl, .obj, .off or another\n"
+                  "format ITK reads), a geodesic sphere or a\n"
                   "SurfaceNets mesh of a threshold, it alternates scale-space edge detection (ED: every vertex moves\n"
                   "along the image gradient to the edge found coarse-to-fine from sigma = D down to the voxel\n"
                   "length), regularity edge swaps (ES) and centroid smoothing (S) until the mean q_area reaches\n"
@@ -539,6 +544,10 @@ MakeRefineCommand()
     { "report", "", "print the quality (and phantom distances) before and after", "" },
     { "threads", "N", "work units (0: all cores)", "0" },
   };
+  for (const auto & o : MeshWriteOptions())
+  {
+    c.options.push_back(o);
+  }
   c.minimumPositional = 2;
   c.maximumPositional = 3;
   c.run = RunRefine;
