@@ -22,6 +22,8 @@ itk_module(MeshExtraction
     ITKOptimizers
     ITKRegistrationCommon
     ITKStatistics
+    ITKEigen3
+    ITKHDF5
     ITKImageNoise
   TEST_DEPENDS
     ITKTestKernel
