@@ -56,6 +56,10 @@ struct SimilarityParameters
 MeshExtraction_EXPORT SimilarityParameters
 AlignShape(const Shape & from, const Shape & to, bool withScale);
 
+/** outer o inner: p -> outer(inner(p)). */
+MeshExtraction_EXPORT SimilarityParameters
+Compose(const SimilarityParameters & outer, const SimilarityParameters & inner);
+
 MeshExtraction_EXPORT Shape
 ApplySimilarity(const SimilarityParameters & t, const Shape & shape);
 

@@ -67,6 +67,27 @@ SimilarityParameters::Inverse() const
   return inverse;
 }
 
+SimilarityParameters
+Compose(const SimilarityParameters & outer, const SimilarityParameters & inner)
+{
+  // s_o R_o (s_i R_i p + t_i) + t_o
+  SimilarityParameters out;
+  for (unsigned int r = 0; r < 3; ++r)
+  {
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      out.rotation[r][c] = 0.0;
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        out.rotation[r][c] += outer.rotation[r][k] * inner.rotation[k][c];
+      }
+    }
+  }
+  out.scale = outer.scale * inner.scale;
+  out.translation = outer.Apply(inner.translation);
+  return out;
+}
+
 namespace
 {
 Vec3
