@@ -37,8 +37,8 @@
 
 #include "itkImage.h"
 #include "itkMesh.h"
-#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
@@ -232,15 +232,16 @@ NetConstruction(benchmark::State & state)
   auto run = [&](double times[4]) {
     const auto     start = Clock::now();
     ME::SurfaceNet net;
-    const auto     statistics =
-      ME::ClassifySurfaceCells(image, ME::SurfaceNetsVoxelRange<float>::FromIsoValue(0.0, false), net, threads, false);
+    const auto     statistics = ME::detail::ClassifySurfaceCells(
+      image, ME::detail::SurfaceNetsVoxelRange<float>::FromIsoValue(0.0, false), net, threads, false);
     const auto t1 = Clock::now();
-    ME::BuildSurfaceNet(net, 0.01, threads);
+    ME::detail::BuildSurfaceNet(net, 0.01, threads);
     const auto                                         t2 = Clock::now();
     ME::LargeBlockVector<ME::Vec3>                     points;
     ME::LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
     unsigned int                                       polygonSize = 3;
-    ME::MakeSurfaceNetFaces(net, origin, M, ME::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
+    ME::detail::MakeSurfaceNetFaces(
+      net, origin, M, ME::detail::QuadSplit::ShortestDiagonal, points, polygons, polygonSize);
     const auto t3 = Clock::now();
     times[0] = ms(start, t1);
     times[1] = ms(t1, t2);
@@ -388,7 +389,7 @@ FirstTouch(benchmark::State & state, bool hugePages)
   for (auto _ : state)
   {
     const auto start = Clock::now();
-    auto *     block = static_cast<char *>(hugePages ? ME::AllocateLargeBlock(bytes) : std::malloc(bytes));
+    auto *     block = static_cast<char *>(hugePages ? ME::detail::AllocateLargeBlock(bytes) : std::malloc(bytes));
     if (block == nullptr)
     {
       state.SkipWithError("out of memory");
@@ -404,7 +405,7 @@ FirstTouch(benchmark::State & state, bool hugePages)
     best = std::min(best, seconds);
     if (hugePages)
     {
-      ME::ReleaseLargeBlock(block, bytes);
+      ME::detail::ReleaseLargeBlock(block, bytes);
     }
     else
     {

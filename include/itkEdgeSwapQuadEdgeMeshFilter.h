@@ -47,7 +47,7 @@ namespace itk
  * - ShortestEdge: the other diagonal is shorter.
  *
  * A swap that improves the criterion is made only if it passes the checks of
- * section 4.5.1 (MeshExtraction::CheckEdgeSwap, shared with other mesh types):
+ * section 4.5.1 (MeshExtraction::detail::CheckEdgeSwap, shared with other mesh types):
  * both corners of the old edge keep at least 3 edges (2 on a boundary, the tip of a
  * single triangle); neither new triangle is
  * degenerate (q_area > DegenerateQAreaTolerance, default 1e-4); each new triangle's
@@ -75,13 +75,13 @@ namespace itk
  * a nearby part of the surface. With PreventSelfIntersections (default on; beyond the
  * thesis) the validity guard (itkMeshExtractionValidityGuard.h) searches the new
  * triangles for crossings once the passes end (exact test,
- * MeshExtraction::FindCrossingNewTriangles); the corners of those that cross are
+ * MeshExtraction::detail::FindCrossingNewTriangles); the corners of those that cross are
  * locked and the passes run again from the input, up to
- * MeshExtraction::ValidityThresholds::MaximumSwapAttempts times, after which the input
+ * MeshExtraction::detail::ValidityThresholds::MaximumSwapAttempts times, after which the input
  * is kept unswapped. The output then crosses itself nowhere the input did not.
  *
  * The high-quality SurfaceNets mode and the refinement of closed surfaces swap with
- * another engine, MeshExtraction::SwapEdges on flat arrays, which takes the same
+ * another engine, MeshExtraction::detail::SwapEdges on flat arrays, which takes the same
  * decision; two engines remain because this filter must take any triangle
  * QuadEdgeMesh, boundaries included, and hand on the mesh its Euler operator made (its
  * faces' identifiers and order), while that engine needs a closed surface and lets a
@@ -194,18 +194,18 @@ protected:
 
   /** One pass over the edges; returns the number of swaps made. */
   SizeValueType
-  SwapPass(OutputMeshType * mesh, const MeshExtraction::EdgeSwapParameters & parameters);
+  SwapPass(OutputMeshType * mesh, const MeshExtraction::detail::EdgeSwapParameters & parameters);
 
 private:
   using PointPair = std::pair<OutputPointIdentifier, OutputPointIdentifier>;
 
   /** The decision's parameters from the filter's settings. */
-  MeshExtraction::EdgeSwapParameters
+  MeshExtraction::detail::EdgeSwapParameters
   MakeSwapParameters() const;
   /** One attempt: the input copied to the output (`again`: after an earlier attempt),
    * then passes until one swaps nothing or MaximumNumberOfIterations are made. */
   void
-  SwapFromInput(bool again, const MeshExtraction::EdgeSwapParameters & parameters);
+  SwapFromInput(bool again, const MeshExtraction::detail::EdgeSwapParameters & parameters);
   /** The corners of `triangles` of `mesh` (the output) join the crossing-locked points. */
   void
   LockCorners(const MeshExtraction::IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> & triangles);
@@ -218,8 +218,8 @@ private:
   bool
   IsLocked(OutputPointIdentifier p) const;
   /** The quad of the edge from corners[0] to corners[1], with corners[2] on its left
-   * and corners[3] on its right (MeshExtraction::EdgeSwapQuad). */
-  static MeshExtraction::EdgeSwapQuad
+   * and corners[3] on its right (MeshExtraction::detail::EdgeSwapQuad). */
+  static MeshExtraction::detail::EdgeSwapQuad
   MakeQuad(OutputMeshType *                  mesh,
            const OutputPointIdentifier       corners[4],
            const std::vector<int> &          valence,
@@ -232,8 +232,8 @@ private:
   EdgeSwapCriterionEnum m_Criterion{ EdgeSwapCriterionEnum::Regularity };
   int                   m_MaximumNumberOfIterations{ 20 };
   double                m_FeatureAngle{ 60.0 };
-  double                m_DegenerateQAreaTolerance{ MeshExtraction::ValidityThresholds::DegenerateQAreaTolerance };
-  double                m_MinimumQAreaRatio{ 0.0 };
+  double m_DegenerateQAreaTolerance{ MeshExtraction::detail::ValidityThresholds::DegenerateQAreaTolerance };
+  double m_MinimumQAreaRatio{ 0.0 };
 
   bool m_PreventSelfIntersections{ true };
 

@@ -112,19 +112,19 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::IsLocked(OutputPointIdentif
 }
 
 template <typename TInputMesh, typename TOutputMesh>
-MeshExtraction::EdgeSwapQuad
+MeshExtraction::detail::EdgeSwapQuad
 EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeQuad(OutputMeshType *                  mesh,
                                                               const OutputPointIdentifier       corners[4],
                                                               const std::vector<int> &          valence,
                                                               const std::vector<std::uint8_t> & onBoundary)
 {
   using MeshExtraction::ToVec3;
-  const OutputPointIdentifier  a = corners[0];
-  const OutputPointIdentifier  b = corners[1];
-  const OutputPointIdentifier  c = corners[2];
-  const OutputPointIdentifier  d = corners[3];
-  auto *                       points = mesh->GetPoints();
-  MeshExtraction::EdgeSwapQuad quad;
+  const OutputPointIdentifier          a = corners[0];
+  const OutputPointIdentifier          b = corners[1];
+  const OutputPointIdentifier          c = corners[2];
+  const OutputPointIdentifier          d = corners[3];
+  auto *                               points = mesh->GetPoints();
+  MeshExtraction::detail::EdgeSwapQuad quad;
   quad.a = ToVec3(points->ElementAt(a));
   quad.b = ToVec3(points->ElementAt(b));
   quad.c = ToVec3(points->ElementAt(c));
@@ -144,9 +144,9 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeQuad(OutputMeshType *  
 
 template <typename TInputMesh, typename TOutputMesh>
 auto
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *                           mesh,
-                                                              const MeshExtraction::EdgeSwapParameters & parameters)
-  -> SizeValueType
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(
+  OutputMeshType *                                   mesh,
+  const MeshExtraction::detail::EdgeSwapParameters & parameters) -> SizeValueType
 {
   if (mesh->GetEdgeCells() == nullptr)
   {
@@ -178,9 +178,9 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(OutputMeshType *  
     {
       continue;
     }
-    const MeshExtraction::EdgeSwapDecision decision =
-      MeshExtraction::EvaluateEdgeSwap(MakeQuad(mesh, q, valence, onBoundary), parameters);
-    if (decision.verdict == MeshExtraction::EdgeSwapVerdict::NoImprovement)
+    const MeshExtraction::detail::EdgeSwapDecision decision =
+      MeshExtraction::detail::EvaluateEdgeSwap(MakeQuad(mesh, q, valence, onBoundary), parameters);
+    if (decision.verdict == MeshExtraction::detail::EdgeSwapVerdict::NoImprovement)
     {
       continue;
     }
@@ -226,10 +226,10 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::Flip(FlipEdgeFunctionType *
 }
 
 template <typename TInputMesh, typename TOutputMesh>
-MeshExtraction::EdgeSwapParameters
+MeshExtraction::detail::EdgeSwapParameters
 EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeSwapParameters() const
 {
-  MeshExtraction::EdgeSwapParameters parameters;
+  MeshExtraction::detail::EdgeSwapParameters parameters;
   parameters.criterion = m_Criterion;
   parameters.minimumValence = 3;
   parameters.featureAngle = m_FeatureAngle * itk::Math::pi / 180.0;
@@ -241,8 +241,8 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeSwapParameters() const
 template <typename TInputMesh, typename TOutputMesh>
 void
 EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapFromInput(
-  bool                                       again,
-  const MeshExtraction::EdgeSwapParameters & parameters)
+  bool                                               again,
+  const MeshExtraction::detail::EdgeSwapParameters & parameters)
 {
   if (again)
   {
@@ -288,7 +288,7 @@ void
 EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
 {
   // Every stage, including the free functions below, runs on this filter's work units.
-  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
+  const MeshExtraction::detail::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_NumberOfSwaps = 0;
   m_NumberOfRefusedSwaps = 0;
   m_NumberOfIterations = 0;
@@ -300,7 +300,7 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   }
   this->VerifyParameters();
   const std::string nonTriangle =
-    MeshExtraction::QuadEdgeMeshVertexSmoother<InputMeshType>::DescribeNonTriangleFace(*input);
+    MeshExtraction::detail::QuadEdgeMeshVertexSmoother<InputMeshType>::DescribeNonTriangleFace(*input);
   if (!nonTriangle.empty())
   {
     itkExceptionMacro(<< nonTriangle);
@@ -310,18 +310,18 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   m_NumberOfAttempts = 0;
   m_KeptInput = false;
   m_CrossingLockedPoints.clear();
-  const MeshExtraction::EdgeSwapParameters parameters = this->MakeSwapParameters();
+  const MeshExtraction::detail::EdgeSwapParameters parameters = this->MakeSwapParameters();
   // The input's edges: a triangle with another edge is new.
-  std::vector<MeshExtraction::PointIdentifierEdge> inputEdges;
+  std::vector<MeshExtraction::detail::PointIdentifierEdge> inputEdges;
   if (m_PreventSelfIntersections)
   {
-    inputEdges = MeshExtraction::EdgesByPointIdentifier(MeshExtraction::MakeIndexedTriangleMesh(*input));
+    inputEdges = MeshExtraction::detail::EdgesByPointIdentifier(MeshExtraction::MakeIndexedTriangleMesh(*input));
   }
   this->UpdateProgress(0.0f);
   // Swap from the input; with PreventSelfIntersections, the validity guard's lock and
   // retry: the corners of new triangles that cross another triangle are locked and the
   // swaps made again from the input, until none crosses or the attempts run out.
-  constexpr unsigned int attempts = MeshExtraction::ValidityThresholds::MaximumSwapAttempts;
+  constexpr unsigned int attempts = MeshExtraction::detail::ValidityThresholds::MaximumSwapAttempts;
   for (unsigned int attempt = 0; attempt < attempts; ++attempt)
   {
     this->SwapFromInput(attempt > 0, parameters);
@@ -330,7 +330,7 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
       break;
     }
     const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*this->GetOutput());
-    const std::vector<std::uint32_t>          crossing = MeshExtraction::FindCrossingNewTriangles(indexed, inputEdges);
+    const std::vector<std::uint32_t> crossing = MeshExtraction::detail::FindCrossingNewTriangles(indexed, inputEdges);
     m_NumberOfCrossingTriangles += crossing.size();
     if (crossing.empty())
     {

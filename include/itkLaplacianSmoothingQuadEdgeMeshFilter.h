@@ -66,7 +66,7 @@ namespace itk
  * - PreventSelfIntersections (default on; with PreventInversions): after every
  *   iteration, the moves that made the surface cut through itself or fold, or turned
  *   a closed component inside out, go back to where the iteration started them
- *   (MeshExtraction::UndoFoldingMoves: exact intersection tests of the triangles that
+ *   (MeshExtraction::detail::UndoFoldingMoves: exact intersection tests of the triangles that
  *   moved, signed volumes), so a valid closed surface stays valid; so do, against the
  *   input, the moves that shrink a closed component below a thousandth of its volume
  *   or move a surface past a component (its nesting parity changes, a ray test per
@@ -110,7 +110,6 @@ public:
 
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
-  using SmootherType = MeshExtraction::QuadEdgeMeshVertexSmoother<OutputMeshType>;
   using CoefficientsComputation = MatrixCoefficients<OutputMeshType>;
 
   using SmoothingWeightsEnum = MeshExtractionEnums::SmoothingWeights;
@@ -197,6 +196,9 @@ public:
   itkGetConstMacro(NumberOfMovableVertices, SizeValueType);
 
 protected:
+  /** The per-vertex smoother the filter runs (internal: itk::MeshExtraction::detail). */
+  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
+
   LaplacianSmoothingQuadEdgeMeshFilter() = default;
   ~LaplacianSmoothingQuadEdgeMeshFilter() override = default;
   void

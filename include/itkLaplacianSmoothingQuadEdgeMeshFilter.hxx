@@ -68,7 +68,7 @@ void
 LaplacianSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
 {
   // Every stage, including the free functions below, runs on this filter's work units.
-  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
+  const MeshExtraction::detail::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_NumberOfMoves = 0;
   m_NumberOfShortenedMoves = 0;
   m_NumberOfRejectedMoves = 0;
@@ -82,7 +82,7 @@ LaplacianSmoothingQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   }
   this->VerifyParameters();
   const std::string nonTriangle =
-    MeshExtraction::QuadEdgeMeshVertexSmoother<InputMeshType>::DescribeNonTriangleFace(*input);
+    MeshExtraction::detail::QuadEdgeMeshVertexSmoother<InputMeshType>::DescribeNonTriangleFace(*input);
   if (!nonTriangle.empty())
   {
     itkExceptionMacro(<< nonTriangle);

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionBuffer_h
 #define itkMeshExtractionBuffer_h
 
@@ -24,11 +25,12 @@
 #include <cstdint>
 #include <memory>
 #include <type_traits>
-#include <vector>
 
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** Memory for `bytes`, not initialised, released with ReleaseLargeBlock(block,
  * bytes). Small blocks are aligned to a cache line. Large blocks (1 MiB and more)
@@ -138,47 +140,7 @@ private:
   std::size_t                 m_Size{ 0 };
 };
 
-/** \brief A standard allocator on AllocateLargeBlock: the vectors of per-node and
- * per-face data (SurfaceNet, the faces) get huge pages where they are large, and
- * are otherwise the same std::vector. \ingroup MeshExtraction */
-template <typename T>
-struct LargeBlockAllocator
-{
-  using value_type = T;
-
-  LargeBlockAllocator() = default;
-  template <typename U>
-  LargeBlockAllocator(const LargeBlockAllocator<U> &) noexcept
-  {}
-
-  T *
-  allocate(std::size_t n)
-  {
-    return static_cast<T *>(AllocateLargeBlock(n * sizeof(T)));
-  }
-  void
-  deallocate(T * p, std::size_t n) noexcept
-  {
-    ReleaseLargeBlock(p, n * sizeof(T));
-  }
-  template <typename U>
-  bool
-  operator==(const LargeBlockAllocator<U> &) const noexcept
-  {
-    return true;
-  }
-  template <typename U>
-  bool
-  operator!=(const LargeBlockAllocator<U> &) const noexcept
-  {
-    return false;
-  }
-};
-
-/** A std::vector whose large buffers get huge pages (LargeBlockAllocator). */
-template <typename T>
-using LargeBlockVector = std::vector<T, LargeBlockAllocator<T>>;
-
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionCellBlock_h
 #define itkMeshExtractionCellBlock_h
 
@@ -27,6 +28,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \brief An itk::Mesh cell (TCell: TriangleCell or QuadrilateralCell of the mesh's
  * CellType) that lives in one block of memory with the other cells made with it,
@@ -175,6 +178,7 @@ private:
   }
 };
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionClosedFormGeometry_h
 #define itkMeshExtractionClosedFormGeometry_h
 
@@ -28,6 +29,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief The closed-form geometry of the analytic surfaces and the phantoms, written
@@ -262,6 +265,7 @@ struct NearestCandidate
 MeshExtraction_EXPORT double
 ClosestPointOnEllipsoid(const Vec3 & semiAxes, const Vec3 & q, Vec3 & closest);
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

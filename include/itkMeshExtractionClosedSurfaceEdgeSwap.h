@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionClosedSurfaceEdgeSwap_h
 #define itkMeshExtractionClosedSurfaceEdgeSwap_h
 
@@ -32,6 +33,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief The swap engine on an indexed closed surface: the high-quality SurfaceNets
@@ -114,6 +117,7 @@ EdgeKey(std::uint32_t u, std::uint32_t v)
   return (static_cast<std::uint64_t>(std::min(u, v)) << 32) | std::max(u, v);
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,15 +15,15 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionDistanceAnalysis_h
 #define itkMeshExtractionDistanceAnalysis_h
 
 #include "MeshExtractionExport.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionMeshSurfaceDistanceReport.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 
-#include <iosfwd>
-#include <string>
 #include <vector>
 
 namespace itk
@@ -32,37 +32,11 @@ class ImplicitSurfaceFunction;
 
 namespace MeshExtraction
 {
-/** \brief Mean (thesis eq. 3.7, the modified Hausdorff distance), RMS and maximum of
- * a set of unsigned distances, plus the signed mean where a sign is known.
- * \ingroup MeshExtraction */
-struct DistanceStatistics
+namespace detail
 {
-  std::size_t count{ 0 };
-  double      mean{ 0.0 };
-  double      rms{ 0.0 };
-  double      maximum{ 0.0 };
-  double      signedMean{ 0.0 }; ///< mean signed distance (negative inside); 0 for a mesh reference
-};
-
+/** Count, mean, RMS, maximum and (with `signedDistances`) signed mean of `distances`. */
 MeshExtraction_EXPORT DistanceStatistics
 ComputeDistanceStatistics(const std::vector<double> & distances, const std::vector<double> * signedDistances = nullptr);
-
-/** \brief Distances between a mesh and a reference surface. \ingroup MeshExtraction */
-struct MeshExtraction_EXPORT MeshSurfaceDistanceReport
-{
-  DistanceStatistics vertices;           ///< mesh vertices -> reference
-  DistanceStatistics faceCentroids;      ///< mesh triangle centroids -> reference
-  DistanceStatistics meshSamples;        ///< vertices, centroids and lattice samples -> reference
-  DistanceStatistics referenceSamples;   ///< reference samples -> mesh (the reverse direction)
-  double             hausdorff{ 0.0 };   ///< max(meshSamples.maximum, referenceSamples.maximum)
-  bool               symmetric{ false }; ///< the reverse direction was measured
-  std::string        referenceDescription;
-
-  void
-  Print(std::ostream & os, const std::string & title = std::string()) const;
-  void
-  PrintJSON(std::ostream & os) const;
-};
 
 /** Options of the distance computation. */
 struct SurfaceDistanceOptions
@@ -115,6 +89,7 @@ ComputeSurfaceDistances(const IndexedTriangleMesh &     mesh,
                         std::vector<double> *           vertexDistances = nullptr,
                         std::vector<double> *           centroidDistances = nullptr);
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,20 +15,23 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionEdgeSwapCriteria_h
 #define itkMeshExtractionEdgeSwapCriteria_h
 
+#include "MeshExtractionExport.h"
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionTriangleGeometry.h"
 #include "itkMeshExtractionValidityGuard.h"
 
 #include <cstdint>
 #include <iosfwd>
-#include <ostream>
 
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief The decision whether to swap one edge, as pure functions of the quad
@@ -42,6 +45,10 @@ namespace MeshExtraction
  * (b, a, d) the one on its right, both counter-clockwise seen from the side their
  * normals point to. A swap replaces them with (a, d, c) and (d, b, c): a and b lose
  * one edge each, c and d gain one.
+ *
+ * The criteria are inline here rather than in src/: both swap engines evaluate them
+ * for every edge of every sweep, where a call the compiler cannot inline would cost
+ * as much as the arithmetic.
  *
  * \ingroup MeshExtraction
  */
@@ -99,30 +106,9 @@ enum class EdgeSwapVerdict : std::uint8_t
   LowerQuality        ///< the worst new triangle is below minimumQAreaRatio times the worst old one
 };
 
-inline std::ostream &
-operator<<(std::ostream & os, EdgeSwapVerdict v)
-{
-  switch (v)
-  {
-    case EdgeSwapVerdict::Swap:
-      return os << "Swap";
-    case EdgeSwapVerdict::NoImprovement:
-      return os << "NoImprovement";
-    case EdgeSwapVerdict::NotManifold:
-      return os << "NotManifold";
-    case EdgeSwapVerdict::ValenceTooLow:
-      return os << "ValenceTooLow";
-    case EdgeSwapVerdict::DegenerateTriangle:
-      return os << "DegenerateTriangle";
-    case EdgeSwapVerdict::NormalsDisagree:
-      return os << "NormalsDisagree";
-    case EdgeSwapVerdict::FeatureEdge:
-      return os << "FeatureEdge";
-    case EdgeSwapVerdict::LowerQuality:
-      return os << "LowerQuality";
-  }
-  return os << "InvalidEdgeSwapVerdict";
-}
+/** The verdict's name. */
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & os, EdgeSwapVerdict v);
 
 struct EdgeSwapDecision
 {
@@ -283,6 +269,7 @@ EvaluateEdgeSwap(const EdgeSwapQuad & q, const EdgeSwapParameters & p)
   return decision;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionGaussianScaleSpace_h
 #define itkMeshExtractionGaussianScaleSpace_h
 
@@ -37,6 +38,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief The scale space of scale-space edge detection (thesis sections 2.1.3 and
@@ -675,6 +678,7 @@ private:
   double                            m_BuildSeconds{ 0.0 };
 };
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -19,6 +19,7 @@
 #define itkMeshExtractionIndexedTriangleMesh_h
 
 #include "MeshExtractionExport.h"
+#include "itkMeshExtractionMeshConversion.h"
 #include "itkMeshExtractionTriangleGeometry.h"
 #include "itkCellInterface.h"
 #include "itkCommonEnums.h"
@@ -27,9 +28,6 @@
 
 #include <array>
 #include <cstdint>
-#include <limits>
-#include <type_traits>
-#include <unordered_map>
 #include <vector>
 
 namespace itk
@@ -101,190 +99,12 @@ struct MeshTopology
 
   /** The other triangle on the side of a manifold edge, or -1 (max uint32). */
   std::uint32_t
-  Neighbor(std::uint32_t triangle, unsigned int side) const
-  {
-    const Edge & e = edges[triangleEdges[triangle][side]];
-    if (e.numberOfIncidences != 2)
-    {
-      return std::numeric_limits<std::uint32_t>::max();
-    }
-    const Incidence & i0 = incidences[e.firstIncidence];
-    return i0.triangle == triangle ? incidences[e.firstIncidence + 1].triangle : i0.triangle;
-  }
+  Neighbor(std::uint32_t triangle, unsigned int side) const;
 };
 
 /** Build the topology of an indexed triangle mesh (O(F log F), deterministic). */
 MeshExtraction_EXPORT MeshTopology
 BuildMeshTopology(const IndexedTriangleMesh & mesh);
-
-/** 6 x the signed volume each component of a closed mesh encloses (positive for an
- * outer surface, negative for a cavity's), summed over `triangles` in order:
- * componentOf(f) < origin.size() names the component of triangle f, and its volume
- * is measured from origin[c] (one of its points, which keeps the round-off small). */
-template <typename TComponentOf>
-std::vector<double>
-ComponentSixVolumes(const std::vector<TriangleIndices> & triangles,
-                    const std::vector<Vec3> &            points,
-                    const std::vector<Vec3> &            origin,
-                    TComponentOf &&                      componentOf)
-{
-  std::vector<double> volume(origin.size(), 0.0);
-  for (std::size_t f = 0; f < triangles.size(); ++f)
-  {
-    const auto &        t = triangles[f];
-    const std::uint32_t c = componentOf(f);
-    const Vec3 &        o = origin[c];
-    volume[c] += Dot(points[t[0]] - o, Cross(points[t[1]] - o, points[t[2]] - o));
-  }
-  return volume;
-}
-
-/** Split a quad (a, b, c, d) along its shorter diagonal into two triangles. */
-MeshExtraction_EXPORT void
-SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIndices & t0, TriangleIndices & t1);
-
-namespace Detail
-{
-template <typename T, typename = void>
-struct IsQuadEdgeMesh : std::false_type
-{};
-template <typename T>
-struct IsQuadEdgeMesh<T, std::void_t<typename T::QEPrimal>> : std::true_type
-{};
-
-/** Source point identifier -> index of the point in an IndexedTriangleMesh: a table
- * where the identifiers are compact (the largest below 4 per point plus 1024), else
- * a hash map. Insert and IndexOf stay inline: they run once per point and once per
- * corner of every cell. */
-class MeshExtraction_EXPORT PointIdentifierMap
-{
-public:
-  static constexpr std::uint32_t Missing = std::numeric_limits<std::uint32_t>::max();
-
-  PointIdentifierMap(IdentifierType maximumIdentifier, std::size_t numberOfPoints);
-
-  void
-  Insert(IdentifierType id, std::uint32_t index)
-  {
-    if (m_Dense)
-    {
-      m_Table[id] = index;
-    }
-    else
-    {
-      m_Hash.emplace(id, index);
-    }
-  }
-
-  /** The index of point `id`; an itk::ExceptionObject naming cell `cellId` if the
-   * mesh has no such point. */
-  std::uint32_t
-  IndexOf(IdentifierType id, IdentifierType cellId) const
-  {
-    std::uint32_t index = Missing;
-    if (m_Dense)
-    {
-      if (id <= m_MaximumIdentifier)
-      {
-        index = m_Table[id];
-      }
-    }
-    else
-    {
-      const auto found = m_Hash.find(id);
-      if (found != m_Hash.end())
-      {
-        index = found->second;
-      }
-    }
-    if (index == Missing)
-    {
-      ThrowMissingPoint(id, cellId);
-    }
-    return index;
-  }
-
-private:
-  [[noreturn]] static void
-  ThrowMissingPoint(IdentifierType id, IdentifierType cellId);
-
-  IdentifierType                                    m_MaximumIdentifier;
-  bool                                              m_Dense;
-  std::vector<std::uint32_t>                        m_Table;
-  std::unordered_map<IdentifierType, std::uint32_t> m_Hash;
-};
-
-/** Appends the points of a mesh's point container to `out` (points and pointIds, in
- * container order) and returns the map from their identifiers to their indices. */
-template <typename TPointsContainer>
-PointIdentifierMap
-CopyPoints(const TPointsContainer & points, IndexedTriangleMesh & out)
-{
-  if (points.Size() >= std::numeric_limits<std::uint32_t>::max())
-  {
-    itkGenericExceptionMacro("MeshExtraction: mesh has " << points.Size()
-                                                         << " points, more than the supported 2^32 - 1.");
-  }
-  out.points.reserve(points.Size());
-  out.pointIds.reserve(points.Size());
-  IdentifierType maxId = 0;
-  for (auto it = points.Begin(); it != points.End(); ++it)
-  {
-    maxId = std::max<IdentifierType>(maxId, it.Index());
-  }
-  PointIdentifierMap map(maxId, points.Size());
-  for (auto it = points.Begin(); it != points.End(); ++it)
-  {
-    map.Insert(it.Index(), static_cast<std::uint32_t>(out.points.size()));
-    out.points.push_back(ToVec3(it.Value()));
-    out.pointIds.push_back(it.Index());
-  }
-  return map;
-}
-
-/** Appends cell `cellId` to `out`: a triangle as it is, a quadrilateral split along
- * its shorter diagonal, a vertex or line cell only counted; any other polygon raises
- * an itk::ExceptionObject. */
-template <typename TCell>
-void
-AppendCell(const TCell & cell, IdentifierType cellId, const PointIdentifierMap & map, IndexedTriangleMesh & out)
-{
-  const auto type = cell.GetType();
-  if (type == CellGeometryEnum::VERTEX_CELL || type == CellGeometryEnum::LINE_CELL ||
-      type == CellGeometryEnum::QUADRATIC_EDGE_CELL)
-  {
-    ++out.numberOfIgnoredCells;
-    return;
-  }
-  const auto n = cell.GetNumberOfPoints();
-  if (n != 3 && n != 4)
-  {
-    itkGenericExceptionMacro("MeshExtraction: cell " << cellId << " is a polygon with " << n
-                                                     << " points; only triangles and quadrilaterals "
-                                                        "(split along the shorter diagonal) are measured.");
-  }
-  std::uint32_t ids[4];
-  unsigned int  k = 0;
-  for (auto p = cell.PointIdsBegin(); p != cell.PointIdsEnd() && k < 4; ++p)
-  {
-    ids[k++] = map.IndexOf(*p, cellId);
-  }
-  if (n == 3)
-  {
-    out.triangles.push_back({ ids[0], ids[1], ids[2] });
-    out.cellIds.push_back(cellId);
-    return;
-  }
-  TriangleIndices t0;
-  TriangleIndices t1;
-  SplitQuad(out, ids, t0, t1);
-  out.triangles.push_back(t0);
-  out.triangles.push_back(t1);
-  out.cellIds.push_back(cellId);
-  out.cellIds.push_back(cellId);
-  ++out.numberOfSplitQuads;
-}
-} // namespace Detail
 
 /** Copy an itk::Mesh or itk::QuadEdgeMesh into flat arrays.
  *
@@ -303,7 +123,7 @@ MakeIndexedTriangleMesh(const TMesh & mesh)
   {
     return out;
   }
-  const Detail::PointIdentifierMap map = Detail::CopyPoints(*points, out);
+  const detail::PointIdentifierMap map = detail::CopyPoints(*points, out);
   const auto *                     cells = mesh.GetCells();
   if (cells == nullptr)
   {
@@ -315,7 +135,7 @@ MakeIndexedTriangleMesh(const TMesh & mesh)
   {
     if (it.Value() != nullptr)
     {
-      Detail::AppendCell(*it.Value(), it.Index(), map, out);
+      detail::AppendCell(*it.Value(), it.Index(), map, out);
     }
   }
   return out;
@@ -341,7 +161,7 @@ FillMesh(const IndexedTriangleMesh & in, TMesh & mesh)
     }
     mesh.SetPoint(static_cast<typename TMesh::PointIdentifier>(i), p);
   }
-  if constexpr (Detail::IsQuadEdgeMesh<TMesh>::value)
+  if constexpr (detail::IsQuadEdgeMesh<TMesh>::value)
   {
     for (std::size_t f = 0; f < in.triangles.size(); ++f)
     {

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionJSON_h
 #define itkMeshExtractionJSON_h
 
@@ -27,6 +28,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** A double as a JSON value: `os << JSONNumber{ x }` writes a finite x as a number and
  * NaN or an infinity, which JSON cannot hold, as null (a mesh with a NaN point has NaN
@@ -58,6 +61,7 @@ JSONText(const TPrintable & printable)
   printable.PrintJSON(os);
   return os.str();
 }
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionParallel_h
 #define itkMeshExtractionParallel_h
 
@@ -27,6 +28,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** The number of work units ParallelForBlocks uses when given 0, for the calling
  * thread: 0 (ITK's global default) unless a ScopedNumberOfWorkUnits is alive. */
@@ -90,6 +93,7 @@ ParallelForBlocks(std::size_t n, std::size_t blockSize, TFunction && f, unsigned
     nullptr);
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

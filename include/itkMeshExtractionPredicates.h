@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionPredicates_h
 #define itkMeshExtractionPredicates_h
 
@@ -28,6 +29,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \brief Exact geometric predicates on double coordinates.
  *
@@ -110,6 +113,7 @@ struct FanScratch
 MeshExtraction_EXPORT bool
 CertifyFan(const Vec3 * points, std::uint32_t v, const FanCorner * corners, std::size_t k, FanScratch & scratch);
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionQuadEdgeMeshVertexSmoother_h
 #define itkMeshExtractionQuadEdgeMeshVertexSmoother_h
 
@@ -32,6 +33,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \class QuadEdgeMeshVertexSmoother
  * \brief Smoothing steps on a triangle QuadEdgeMesh, in place: the engine shared by
@@ -319,7 +322,7 @@ public:
       m_Reference = MakeComponentReference(m_FoldCheck, m_FoldTopology);
     }
     m_FoldCheck.points = m_Positions;
-    const std::size_t undone = MeshExtraction::UndoFoldingMoves(
+    const std::size_t undone = MeshExtraction::detail::UndoFoldingMoves(
       m_FoldCheck, m_FoldTopology, m_StepStart, degenerateQAreaTolerance, &m_Reference);
     if (undone > 0)
     {
@@ -439,6 +442,7 @@ private:
   ComponentReference           m_Reference; ///< the components before the first step
 };
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,44 +15,26 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionQualityAnalysis_h
 #define itkMeshExtractionQualityAnalysis_h
 
 #include "MeshExtractionExport.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionTriangleMeshQualityReport.h"
 // The two checks the report runs, each a unit of its own, declared here too for
 // the code that includes this header for them.
 #include "itkMeshExtractionRayParity.h"
 #include "itkMeshExtractionSelfIntersections.h"
 
-#include <array>
-#include <cstdint>
-#include <iosfwd>
-#include <string>
 #include <vector>
 
 namespace itk
 {
 namespace MeshExtraction
 {
-/** \brief Summary of one per-element measure: mean, extremes, percentiles and a
- * histogram of `histogram.size()` equal bins on [histogramLower, histogramUpper]
- * (values outside are clamped into the end bins). \ingroup MeshExtraction */
-struct ValueStatistics
+namespace detail
 {
-  std::size_t              count{ 0 };
-  double                   mean{ 0.0 };
-  double                   minimum{ 0.0 };
-  double                   maximum{ 0.0 };
-  double                   percentile01{ 0.0 }; ///< 1st percentile
-  double                   percentile05{ 0.0 }; ///< 5th percentile
-  double                   median{ 0.0 };
-  double                   percentile95{ 0.0 }; ///< 95th percentile
-  double                   histogramLower{ 0.0 };
-  double                   histogramUpper{ 1.0 };
-  std::vector<std::size_t> histogram;
-};
-
 /** Statistics of `values` with a histogram of `bins` bins on [lower, upper]. */
 MeshExtraction_EXPORT ValueStatistics
 ComputeValueStatistics(std::vector<double> values, double lower = 0.0, double upper = 1.0, unsigned int bins = 10);
@@ -73,84 +55,6 @@ struct TriangleMeshQualityOptions
   std::size_t maximumReportedIntersections{ 20 };
 };
 
-/** \brief Everything the quality calculator measures.
- *
- * Counts that were not computed (no reference mesh, an open mesh for the outward
- * test, self-intersections switched off) are -1.
- * \ingroup MeshExtraction
- */
-struct MeshExtraction_EXPORT TriangleMeshQualityReport
-{
-  // Size
-  std::size_t numberOfPoints{ 0 };
-  std::size_t numberOfReferencedPoints{ 0 };
-  std::size_t numberOfTriangles{ 0 };
-  std::size_t numberOfSplitQuads{ 0 };
-  std::size_t numberOfEdges{ 0 };
-
-  // Triangle shape (thesis section 4.2.3); angles in degrees.
-  ValueStatistics qLength;
-  ValueStatistics qAngle;
-  ValueStatistics qArea;
-  ValueStatistics minimumAngle;
-  ValueStatistics maximumAngle;
-  ValueStatistics edgeLength;
-  double          fractionQAngleBelow03{ 0.0 }; ///< share of triangles with q_angle < 0.3
-
-  // Vertices
-  double                   meanSmoothness{ 0.0 }; ///< mean |2 pi - sum of angles| over interior vertices (sec. 3.3)
-  std::size_t              numberOfInteriorVertices{ 0 };
-  std::vector<std::size_t> valenceHistogram;        ///< [d] = number of vertices with d incident edges
-  double                   fractionValence6{ 0.0 }; ///< share of referenced vertices with valence 6
-
-  // Integrity
-  std::int64_t degenerateTriangles{ 0 };
-  std::int64_t invertedTrianglesVersusReference{ -1 };
-  std::int64_t invertedTrianglesVersusOutward{ -1 };
-  std::int64_t undeterminedOrientationTriangles{ -1 };
-  std::int64_t nonManifoldEdges{ 0 };
-  std::int64_t nonManifoldVertices{ 0 };
-  std::int64_t boundaryEdges{ 0 };
-  std::int64_t boundaryLoops{ 0 };
-  std::int64_t inconsistentlyOrientedEdges{ 0 };
-  std::int64_t unreferencedPoints{ 0 };
-  std::int64_t connectedComponents{ 0 };
-  std::int64_t eulerCharacteristic{ 0 };
-  std::int64_t genus{ -1 }; ///< sum over components of (2 - chi - b) / 2; -1 unless manifold and oriented
-  std::int64_t selfIntersectingPairs{ -1 };
-  std::int64_t selfIntersectingTriangles{ -1 };
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> intersectingPairs; ///< the first few, by triangle index
-  double                                               totalArea{ 0.0 };
-  double enclosedVolume{ 0.0 }; ///< signed (divergence theorem); meaningful for closed surfaces
-
-  bool
-  IsClosed() const
-  {
-    return boundaryEdges == 0 && numberOfTriangles > 0;
-  }
-  bool
-  IsManifold() const
-  {
-    return nonManifoldEdges == 0 && nonManifoldVertices == 0;
-  }
-  bool
-  IsConsistentlyOriented() const
-  {
-    return inconsistentlyOrientedEdges == 0;
-  }
-  /** Closed, 2-manifold, consistently and outward oriented, with no degenerate,
-   * inverted or self-intersecting triangles (checks that were not run do not count). */
-  bool
-  IsValidClosedSurface() const;
-
-  /** Human-readable table. */
-  void
-  Print(std::ostream & os, const std::string & title = std::string()) const;
-  /** One JSON object (no trailing newline). */
-  void
-  PrintJSON(std::ostream & os) const;
-};
-
 /** Measure a triangle mesh. `reference`, if given, must have the same points and
  * triangles by index (an itk::ExceptionObject otherwise); triangles whose normal
  * turned by more than 90 degrees against it count as inverted. `measures`, if
@@ -162,6 +66,7 @@ AnalyzeTriangleMesh(const IndexedTriangleMesh &        mesh,
                     std::vector<TriangleMeasures> *    measures = nullptr,
                     std::vector<double> *              vertexSmoothness = nullptr);
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionRayParity_h
 #define itkMeshExtractionRayParity_h
 
@@ -27,6 +28,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief Which side a closed surface's triangles face, and which components lie inside
@@ -57,6 +60,7 @@ MeshExtraction_EXPORT std::vector<std::uint32_t>
 MeshExtraction_EXPORT std::vector<std::int8_t>
                       ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & topology);
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

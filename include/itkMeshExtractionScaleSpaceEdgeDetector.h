@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionScaleSpaceEdgeDetector_h
 #define itkMeshExtractionScaleSpaceEdgeDetector_h
 
@@ -25,6 +26,7 @@
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionQuadEdgeMeshVertexSmoother.h"
+#include "itkMeshExtractionScaleSpaceEdgeDetectionResult.h"
 
 #include <algorithm>
 #include <chrono>
@@ -37,6 +39,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** The parameters of one scale-space edge-detection step (thesis section 4.2.1);
  * distances in millimetres. \ingroup MeshExtraction */
@@ -62,30 +66,6 @@ struct ScaleSpaceEdgeDetectionParameters
    * thesis section 4.2.3. */
   bool         computeInaccuracy{ true };
   unsigned int numberOfWorkUnits{ 0 };
-};
-
-/** What one step did. \ingroup MeshExtraction */
-struct ScaleSpaceEdgeDetectionResult
-{
-  std::vector<double> scales; ///< coarse to fine, mm
-  std::size_t         numberOfVertices{ 0 };
-  std::size_t         movedVertices{ 0 };      ///< vertices whose position changed
-  std::size_t         shortenedMoves{ 0 };     ///< moves the guard shortened
-  std::size_t         rejectedMoves{ 0 };      ///< moves the guard cancelled
-  std::size_t         undoneMoves{ 0 };        ///< moves undone because they folded the surface
-  std::size_t         normalFallbacks{ 0 };    ///< searches along the normal for want of a gradient
-  double              meanDisplacement{ 0.0 }; ///< mm, over all vertices
-  double              maximumDisplacement{ 0.0 };
-  /** Mean and largest distance from the triangle centroids to the edge the detector
-   * finds from them (NaN when not computed). */
-  double inaccuracy{ std::numeric_limits<double>::quiet_NaN() };
-  double maximumInaccuracy{ std::numeric_limits<double>::quiet_NaN() };
-  bool   scaleSpaceBuilt{ false }; ///< the scale space was (re)computed for this step
-  double scaleSpaceSeconds{ 0.0 }; ///< time of that computation
-  double searchSeconds{ 0.0 };     ///< searches from the vertices
-  double applySeconds{ 0.0 };      ///< the guarded moves and the fold check
-  double inaccuracySeconds{ 0.0 }; ///< searches from the centroids
-  double seconds{ 0.0 };           ///< time of the whole step
 };
 
 /** The smallest scale used for `requested`: `requested` if > 0, else the voxel length
@@ -582,6 +562,7 @@ private:
   ScaleSpaceType m_ScaleSpace;
 };
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,12 +15,13 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionSelfIntersections_h
 #define itkMeshExtractionSelfIntersections_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -30,6 +31,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief Pairs of faces of a mesh that intersect away from their shared vertices and
@@ -99,6 +102,7 @@ MeshExtraction_EXPORT std::vector<std::pair<std::uint32_t, std::uint32_t>>
                                             const TriangleAABBTree &           tree,
                                             SelfIntersectionCache *            cache = nullptr);
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

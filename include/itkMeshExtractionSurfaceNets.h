@@ -15,12 +15,14 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionSurfaceNets_h
 #define itkMeshExtractionSurfaceNets_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionBuffer.h"
-#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
+#include "itkMeshExtractionSurfaceNet.h"
+#include "itkMeshExtractionTriangleGeometry.h"
 #include "itkMatrix.h"
 
 #include <array>
@@ -31,6 +33,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \brief The SurfaceNets cell: corner, edge and face numbering and, for each of
  * the 256 inside/outside configurations, its surface sheets.
@@ -79,18 +83,6 @@ private:
   std::vector<std::array<std::int8_t, 12>> m_SheetOfEdge;
 };
 
-/** A surface cell: the lower-corner voxel index of the cell (each in [-1, N-1])
- * and its configuration. */
-struct SurfaceCell
-{
-  std::int32_t  x;
-  std::int32_t  y;
-  std::int32_t  z;
-  std::uint8_t  configuration;
-  std::uint8_t  faceRules{ 0 }; ///< bit f: ambiguous face f cuts off its outside corners
-  std::uint32_t firstNode{ 0 };
-};
-
 /** The voxel index of corner k of `cell` (bit 0 of k: +x, bit 1: +y, bit 2: +z), in
  * 64-bit signed arithmetic: a cell at -1 has its first corners at -1, outside the
  * image (with the 32-bit coordinate and an unsigned bit, -1 came out as 2^32 - 1). */
@@ -101,40 +93,6 @@ CornerVoxel(const SurfaceCell & cell, unsigned int k)
            std::int64_t{ cell.y } + ((k >> 1) & 1u),
            std::int64_t{ cell.z } + ((k >> 2) & 1u) };
 }
-
-/** \brief The SurfaceNet: nodes in continuous index space, each constrained to a
- * box inside its cell, and the quadrilaterals that join them (one per voxel edge
- * that crosses the surface, counter-clockwise seen from outside).
- * \ingroup MeshExtraction
- */
-struct MeshExtraction_EXPORT SurfaceNet
-{
-  std::array<std::int64_t, 3>     size{ { 0, 0, 0 } }; ///< image size in voxels
-  LargeBlockVector<SurfaceCell>   cells;               ///< sorted by (z, y, x)
-  LargeBlockVector<std::uint32_t> rowStart;            ///< cells of cell-row (y, z): [rowStart[r], rowStart[r+1])
-
-  LargeBlockVector<Vec3>                         positions; ///< node positions, continuous index
-  LargeBlockVector<Vec3>                         boxLower;  ///< node constraint box, continuous index
-  LargeBlockVector<Vec3>                         boxUpper;
-  LargeBlockVector<std::uint32_t>                nodeCell; ///< cell of each node
-  LargeBlockVector<std::array<std::uint32_t, 4>> quads;
-  LargeBlockVector<std::uint8_t>                 quadAxis; ///< axis of the crossing voxel edge, +4 if outward is -axis
-  LargeBlockVector<std::uint32_t>                neighborStart; ///< node links (the quads' edges): compressed rows
-  LargeBlockVector<std::uint32_t>                neighbors;
-  std::size_t                                    numberOfSplitCells{ 0 };
-
-  /** The row of cells at (y, z), y and z in [-1, N-1]: its cells are
-   * [rowStart[row], rowStart[row + 1]). */
-  std::int64_t
-  RowOf(std::int64_t y, std::int64_t z) const
-  {
-    return (z + 1) * (size[1] + 1) + (y + 1);
-  }
-
-  /** Index of the surface cell with lower corner (x, y, z), or -1. */
-  std::int64_t
-  FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const;
-};
 
 /** Turn the surface cells of an image (sorted by z, y, x) into a net: one node
  * per sheet, the quads, the links, and the nodes' constraint boxes: the cell
@@ -215,6 +173,7 @@ MakeSurfaceNetFaces(const SurfaceNet &                               net,
 // FindSurfaceNetSelfIntersections and RemoveSurfaceNetSelfIntersections, is part of the
 // validity guard: itkMeshExtractionValidityGuard.h.
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

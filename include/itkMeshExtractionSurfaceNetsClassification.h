@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionSurfaceNetsClassification_h
 #define itkMeshExtractionSurfaceNetsClassification_h
 
@@ -38,6 +39,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** What the classification pass saw of the image. */
 struct SurfaceNetsClassificationStatistics
@@ -849,6 +852,7 @@ ClassifySurfaceCells(const TImage * image,
   return SurfaceNetsCellClassifier<TImage, TInside>(image, inside, net, numberOfWorkUnits, extremes).Run();
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

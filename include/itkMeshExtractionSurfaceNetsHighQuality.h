@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionSurfaceNetsHighQuality_h
 #define itkMeshExtractionSurfaceNetsHighQuality_h
 
@@ -33,6 +34,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** The settings of the high-quality mode (SurfaceNetsImageToMeshFilter's
  * NumberOfHighQualityRounds, HighQualityIterations, HighQualityCellDilation and
@@ -135,6 +138,7 @@ private:
   SurfaceNetsHighQualityResult m_Result;
 };
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

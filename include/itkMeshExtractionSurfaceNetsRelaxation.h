@@ -15,11 +15,12 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionSurfaceNetsRelaxation_h
 #define itkMeshExtractionSurfaceNetsRelaxation_h
 
-#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionGaussianScaleSpace.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSurfaceNets.h"
@@ -39,6 +40,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \brief Trilinear interpolation and central-difference gradients of an image in
  * continuous index space (relative to the buffer's first voxel), extended beyond
@@ -1068,6 +1071,7 @@ RelaxSurfaceNet(SurfaceNet &                            net,
   return relaxer.Run(progress);
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -26,8 +26,10 @@
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
+#include "itkMacro.h"
 #include "itkSimilarity3DTransform.h"
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -39,6 +41,36 @@ namespace MeshExtraction
 {
 namespace detail
 {
+/** The triangles of `mesh` as arrays; throws naming `role` when it has none or a
+ * coordinate is not finite. */
+template <typename TMesh>
+IndexedTriangleMesh
+CheckedTriangleMesh(const TMesh * mesh, const char * role)
+{
+  if (mesh == nullptr)
+  {
+    itkGenericExceptionMacro("No " << role << " mesh: set it first.");
+  }
+  IndexedTriangleMesh indexed = MakeIndexedTriangleMesh(*mesh);
+  if (indexed.triangles.empty())
+  {
+    itkGenericExceptionMacro("The " << role << " mesh has no triangles (" << mesh->GetNumberOfPoints() << " points, "
+                                    << mesh->GetNumberOfCells() << " cells).");
+  }
+  for (std::size_t i = 0; i < indexed.points.size(); ++i)
+  {
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      if (!std::isfinite(indexed.points[i][d]))
+      {
+        itkGenericExceptionMacro("The " << role << " mesh's point " << indexed.pointIds[i]
+                                        << " has a coordinate that is not finite.");
+      }
+    }
+  }
+  return indexed;
+}
+
 /** A point of a mesh's surface: the triangle and the barycentric weights of its
  * corners (for point-to-point correspondence, a vertex: weight 1 on one corner). */
 struct SurfacePoint

@@ -15,12 +15,13 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionTriangleAABBTree_h
 #define itkMeshExtractionTriangleAABBTree_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 
 #include <cstdint>
 #include <limits>
@@ -30,6 +31,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \brief Axis-aligned box in double precision. \ingroup MeshExtraction */
 struct AxisAlignedBox
@@ -419,6 +422,7 @@ private:
   AxisAlignedBoxArray             m_Boxes;     ///< box of each primitive slot
 };
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

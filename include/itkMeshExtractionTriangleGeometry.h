@@ -28,7 +28,11 @@
 namespace itk
 {
 /** \namespace itk::MeshExtraction
- * \brief Building blocks shared by the MeshExtraction filters and calculators.
+ * \brief The module's public utility types: phantoms, the calculators' reports, the
+ * indexed triangle mesh and its conversions, the SurfaceNet, geodesic spheres, landmark
+ * files and the small triangle geometry below. Everything else the filters share lives
+ * in the nested namespace itk::MeshExtraction::detail, whose headers say so in their
+ * first line: it is not part of the public API and may change without notice.
  *
  * All triangle geometry of the module lives in this header: angles, areas,
  * normals, the quality measures of the thesis (section 4.2.3), closest point on a

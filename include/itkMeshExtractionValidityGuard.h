@@ -15,12 +15,13 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionValidityGuard_h
 #define itkMeshExtractionValidityGuard_h
 
 #include "MeshExtractionExport.h"
-#include "itkMeshExtractionBuffer.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionSurfaceNets.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMeshExtractionVertexSmoothing.h"
@@ -34,6 +35,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief The validity guard: every check that keeps a mesh valid while its vertices
@@ -146,6 +149,28 @@ struct ValidityThresholds
 // ---------------------------------------------------------------------------------
 // Components
 // ---------------------------------------------------------------------------------
+
+/** 6 x the signed volume each component of a closed mesh encloses (positive for an
+ * outer surface, negative for a cavity's), summed over `triangles` in order:
+ * componentOf(f) < origin.size() names the component of triangle f, and its volume
+ * is measured from origin[c] (one of its points, which keeps the round-off small). */
+template <typename TComponentOf>
+std::vector<double>
+ComponentSixVolumes(const std::vector<TriangleIndices> & triangles,
+                    const std::vector<Vec3> &            points,
+                    const std::vector<Vec3> &            origin,
+                    TComponentOf &&                      componentOf)
+{
+  std::vector<double> volume(origin.size(), 0.0);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+  {
+    const auto &        t = triangles[f];
+    const std::uint32_t c = componentOf(f);
+    const Vec3 &        o = origin[c];
+    volume[c] += Dot(points[t[0]] - o, Cross(points[t[1]] - o, points[t[2]] - o));
+  }
+  return volume;
+}
 
 /** The one definition of a collapsed component: a closed component whose (6 x signed)
  * volume was `start` before a change and is `now` after it has collapsed if it turned
@@ -449,6 +474,7 @@ MeshExtraction_EXPORT std::vector<PointIdentifierEdge>
 MeshExtraction_EXPORT std::vector<std::uint32_t>
 FindCrossingNewTriangles(const IndexedTriangleMesh & mesh, const std::vector<PointIdentifierEdge> & oldEdges);
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -15,6 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
+// Internal to MeshExtraction (namespace detail): not part of the public API.
 #ifndef itkMeshExtractionVertexSmoothing_h
 #define itkMeshExtractionVertexSmoothing_h
 
@@ -29,6 +30,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 /** \file
  * \brief One smoothing move of one vertex, as pure functions of the vertex and its
@@ -45,6 +48,9 @@ namespace MeshExtraction
  * 3. GuardVertexMove() (the validity guard, itkMeshExtractionValidityGuard.h): the
  *    move is taken whole, or halved until no incident triangle flips or degenerates,
  *    or rejected.
+ *
+ * They are inline here rather than in src/: the smoothing filters' template loops call
+ * them for every vertex of every iteration.
  *
  * \ingroup MeshExtraction
  */
@@ -284,6 +290,7 @@ SmoothingDisplacement(const VertexSmoothingParameters & p, const VertexOneRing &
   return d;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -19,9 +19,9 @@
 #define itkMeshSurfaceDistanceCalculator_h
 
 #include "itkImplicitSurfaceFunction.h"
-#include "itkMeshExtractionDistanceAnalysis.h"
 #include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionMacros.h"
+#include "itkMeshExtractionMeshSurfaceDistanceReport.h"
 #include "itkObject.h"
 #include "itkObjectFactory.h"
 
@@ -107,7 +107,7 @@ public:
   std::string
   GetReportAsJSON() const
   {
-    return MeshExtraction::JSONText(m_Report);
+    return MeshExtraction::detail::JSONText(m_Report);
   }
   const StatisticsType &
   GetVertexDistance() const

@@ -19,6 +19,8 @@
 #define itkMeshSurfaceDistanceCalculator_hxx
 
 #include "itkMeshSurfaceDistanceCalculator.h"
+#include "itkMeshExtractionDistanceAnalysis.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
 
 namespace itk
 {
@@ -64,17 +66,17 @@ MeshSurfaceDistanceCalculator<TMesh, TReferenceMesh>::Compute()
   {
     reference = MeshExtraction::MakeIndexedTriangleMesh(*m_ReferenceMesh);
   }
-  MeshExtraction::SurfaceDistanceOptions options;
+  MeshExtraction::detail::SurfaceDistanceOptions options;
   options.samplingLevel = m_SamplingLevel;
   options.symmetric = m_Symmetric;
   options.implicitSampleSpacing = m_ImplicitSampleSpacing;
   options.numberOfWorkUnits = m_NumberOfWorkUnits;
-  m_Report = MeshExtraction::ComputeSurfaceDistances(mesh,
-                                                     m_ReferenceMesh.IsNotNull() ? &reference : nullptr,
-                                                     m_ReferenceSurface.GetPointer(),
-                                                     options,
-                                                     &m_VertexDistances,
-                                                     &m_FaceCentroidDistances);
+  m_Report = MeshExtraction::detail::ComputeSurfaceDistances(mesh,
+                                                             m_ReferenceMesh.IsNotNull() ? &reference : nullptr,
+                                                             m_ReferenceSurface.GetPointer(),
+                                                             options,
+                                                             &m_VertexDistances,
+                                                             &m_FaceCentroidDistances);
 }
 
 template <typename TMesh, typename TReferenceMesh>

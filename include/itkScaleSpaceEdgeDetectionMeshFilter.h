@@ -41,7 +41,7 @@ namespace itk
  *   MinimumScale (default 0: the voxel length, the smallest spacing), sampled
  *   logarithmically with NumberOfScalesPerOctave per doubling (default 4; the thesis
  *   gives the rule sigma_i = 2^(i/n) but no value of n), see
- *   MeshExtraction::ScaleSpaceScales();
+ *   MeshExtraction::detail::ScaleSpaceScales();
  * - at each scale the Gaussian gradient magnitude is sampled at five points 0.5 sigma
  *   apart in a window of width 2 sigma centred on the current estimate; the largest
  *   centres the next scale's window; a window that would leave the capture range
@@ -54,7 +54,7 @@ namespace itk
  * Scales and distances are physical (mm): the Gaussian is isotropic in physical space
  * on anisotropic voxels, and the direction matrix is honoured. The gradient
  * magnitudes are separable convolutions of the mesh's region of the image with ITK's
- * GaussianDerivativeOperator kernels (MeshExtraction::GaussianGradientMagnitudeScaleSpace),
+ * GaussianDerivativeOperator kernels (MeshExtraction::detail::GaussianGradientMagnitudeScaleSpace),
  * computed once and kept for later updates while the image and the scales stay the
  * same and the mesh stays in the region; ReleaseScaleSpace() frees them.
  *
@@ -100,7 +100,6 @@ public:
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
   using ImageType = TImage;
-  using DetectorType = MeshExtraction::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
   using EdgeSearchDirectionEnum = MeshExtractionEnums::EdgeSearchDirection;
 
   static_assert(OutputMeshType::PointDimension == 3, "ScaleSpaceEdgeDetectionMeshFilter works on 3-D surface meshes");
@@ -220,6 +219,9 @@ public:
   }
 
 protected:
+  /** The edge detector the filter runs (internal: itk::MeshExtraction::detail). */
+  using DetectorType = MeshExtraction::detail::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
+
   ScaleSpaceEdgeDetectionMeshFilter();
   ~ScaleSpaceEdgeDetectionMeshFilter() override = default;
   void
@@ -229,7 +231,7 @@ protected:
   void
   GenerateData() override;
 
-  MeshExtraction::ScaleSpaceEdgeDetectionParameters
+  MeshExtraction::detail::ScaleSpaceEdgeDetectionParameters
   MakeParameters() const;
 
 private:

@@ -31,10 +31,10 @@ ScaleSpaceEdgeDetectionMeshFilter<TInputMesh, TImage, TOutputMesh>::ScaleSpaceEd
 }
 
 template <typename TInputMesh, typename TImage, typename TOutputMesh>
-MeshExtraction::ScaleSpaceEdgeDetectionParameters
+MeshExtraction::detail::ScaleSpaceEdgeDetectionParameters
 ScaleSpaceEdgeDetectionMeshFilter<TInputMesh, TImage, TOutputMesh>::MakeParameters() const
 {
-  MeshExtraction::ScaleSpaceEdgeDetectionParameters p;
+  MeshExtraction::detail::ScaleSpaceEdgeDetectionParameters p;
   p.maximumDeviation = m_MaximumDeviation;
   p.minimumScale = m_MinimumScale;
   p.scalesPerOctave = m_NumberOfScalesPerOctave;
@@ -53,19 +53,19 @@ void
 ScaleSpaceEdgeDetectionMeshFilter<TInputMesh, TImage, TOutputMesh>::GenerateData()
 {
   // Every stage, including the free functions below, runs on this filter's work units.
-  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
+  const MeshExtraction::detail::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_Result = MeshExtraction::ScaleSpaceEdgeDetectionResult();
   const InputMeshType * input = this->GetInput();
   if (input == nullptr)
   {
     itkExceptionMacro(<< "No input mesh: call SetInput() before Update()");
   }
-  const MeshExtraction::ScaleSpaceEdgeDetectionParameters parameters = this->MakeParameters();
-  std::string                                             problem = DetectorType::CheckParameters(parameters);
+  const MeshExtraction::detail::ScaleSpaceEdgeDetectionParameters parameters = this->MakeParameters();
+  std::string                                                     problem = DetectorType::CheckParameters(parameters);
   if (problem.empty())
   {
-    problem =
-      MeshExtraction::ScaleSpaceEdgeDetector<InputMeshType, ImageType>::CheckInputs(input, this->GetInputImage());
+    problem = MeshExtraction::detail::ScaleSpaceEdgeDetector<InputMeshType, ImageType>::CheckInputs(
+      input, this->GetInputImage());
   }
   if (!problem.empty())
   {

@@ -44,7 +44,7 @@ namespace itk
  *    engine): every vertex moves to the edge within MaximumDeviation of it;
  * 2. ES: regularity edge swaps with the decision and default parameters of
  *    EdgeSwapQuadEdgeMeshFilter (on a closed 2-manifold surface through the indexed
- *    swap engine of the high-quality SurfaceNets, MeshExtraction::SwapEdges, which is
+ *    swap engine of the high-quality SurfaceNets, MeshExtraction::detail::SwapEdges, which is
  *    much faster on large meshes; on other meshes through the filter itself);
  * 3. S: centroid smoothing steps S_C = 1/3 v + 2/3 S_L(v) (uniform, batch, with the
  *    no-inversion guard of LaplacianSmoothingQuadEdgeMeshFilter), repeated until a
@@ -78,7 +78,7 @@ namespace itk
  * the smoothing look at one vertex at a time, and the edge swap at one quad at a
  * time, so after each ED and S the moves that made the surface fold or cut through
  * itself, or turned a closed component inside out, are undone
- * (MeshExtraction::UndoFoldingMoves, exact intersection tests, signed volumes), and
+ * (MeshExtraction::detail::UndoFoldingMoves, exact intersection tests, signed volumes), and
  * after each ES the swaps whose new triangles intersect the surface or fold against
  * a neighbour are undone and not tried again (closed surfaces), or the corners of
  * those triangles are locked and the swaps made again from the mesh before the ES
@@ -117,8 +117,6 @@ public:
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
   using ImageType = TImage;
-  using DetectorType = MeshExtraction::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
-  using SmootherType = MeshExtraction::QuadEdgeMeshVertexSmoother<OutputMeshType>;
   using EdgeSwapFilterType = EdgeSwapQuadEdgeMeshFilter<OutputMeshType, OutputMeshType>;
   using StepType = MeshExtraction::ScaleSpaceRefinementStep;
   using StepsType = std::vector<StepType>;
@@ -204,6 +202,11 @@ public:
   }
 
 protected:
+  /** The edge detector and the per-vertex smoother the protocol runs (internal:
+   * itk::MeshExtraction::detail). */
+  using DetectorType = MeshExtraction::detail::ScaleSpaceEdgeDetector<OutputMeshType, ImageType>;
+  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
+
   ScaleSpaceEdgeMeshRefinementFilter();
   ~ScaleSpaceEdgeMeshRefinementFilter() override = default;
   void
@@ -213,7 +216,7 @@ protected:
   void
   GenerateData() override;
 
-  MeshExtraction::ScaleSpaceEdgeDetectionParameters
+  MeshExtraction::detail::ScaleSpaceEdgeDetectionParameters
   MakeDetectorParameters() const;
 
   /** The protocol's operations on the working mesh, each adding a row. */

@@ -40,10 +40,10 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::ScaleSpaceE
 }
 
 template <typename TInputMesh, typename TImage, typename TOutputMesh>
-MeshExtraction::ScaleSpaceEdgeDetectionParameters
+MeshExtraction::detail::ScaleSpaceEdgeDetectionParameters
 ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::MakeDetectorParameters() const
 {
-  MeshExtraction::ScaleSpaceEdgeDetectionParameters p;
+  MeshExtraction::detail::ScaleSpaceEdgeDetectionParameters p;
   p.maximumDeviation = m_MaximumDeviation;
   p.minimumScale = m_MinimumScale;
   p.scalesPerOctave = m_NumberOfScalesPerOctave;
@@ -120,7 +120,7 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Record(
   if (m_ReferenceSurface)
   {
     const std::vector<double> d =
-      MeshExtraction::SignedDistancesToSurface(positions, *m_ReferenceSurface, this->GetNumberOfWorkUnits());
+      MeshExtraction::detail::SignedDistancesToSurface(positions, *m_ReferenceSurface, this->GetNumberOfWorkUnits());
     double sum = 0.0;
     for (const double x : d)
     {
@@ -172,30 +172,30 @@ template <typename TInputMesh, typename TImage, typename TOutputMesh>
 void
 ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::ClosedSurfaceEdgeSwap(unsigned int cycle)
 {
-  // The swap engine of the high-quality SurfaceNets (MeshExtraction::SwapEdges, the
+  // The swap engine of the high-quality SurfaceNets (MeshExtraction::detail::SwapEdges, the
   // decision of EdgeSwapQuadEdgeMeshFilter with its default parameters) on an indexed
   // copy: sweeps until none swaps (at most 20, the filter's default), each followed by
   // undoing the swaps whose triangles cut through the surface or fold against a
-  // neighbour (MeshExtraction::UndoIntersectingSwaps; those edges are not tried again).
-  const auto                                start = std::chrono::steady_clock::now();
-  const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*m_Working);
-  MeshExtraction::SurfaceNetTriangles       surface;
+  // neighbour (MeshExtraction::detail::UndoIntersectingSwaps; those edges are not tried again).
+  const auto                                  start = std::chrono::steady_clock::now();
+  const MeshExtraction::IndexedTriangleMesh   indexed = MeshExtraction::MakeIndexedTriangleMesh(*m_Working);
+  MeshExtraction::detail::SurfaceNetTriangles surface;
   surface.triangles = indexed.triangles;
   surface.BuildConnectivity(indexed.points.size());
-  const MeshExtraction::EdgeSwapParameters parameters;
-  std::vector<std::uint64_t>               refused;
-  std::int64_t                             kept = 0;
-  std::int64_t                             undone = 0;
+  const MeshExtraction::detail::EdgeSwapParameters parameters;
+  std::vector<std::uint64_t>                       refused;
+  std::int64_t                                     kept = 0;
+  std::int64_t                                     undone = 0;
   for (unsigned int sweep = 0; sweep < 20; ++sweep)
   {
-    std::vector<MeshExtraction::EdgeSwapRecord> swaps =
-      MeshExtraction::SwapEdges(indexed.points, surface, parameters, &refused);
+    std::vector<MeshExtraction::detail::EdgeSwapRecord> swaps =
+      MeshExtraction::detail::SwapEdges(indexed.points, surface, parameters, &refused);
     if (swaps.empty())
     {
       break;
     }
-    undone +=
-      static_cast<std::int64_t>(MeshExtraction::UndoIntersectingSwaps(indexed.points, surface, swaps, &refused));
+    undone += static_cast<std::int64_t>(
+      MeshExtraction::detail::UndoIntersectingSwaps(indexed.points, surface, swaps, &refused));
     kept += static_cast<std::int64_t>(swaps.size());
   }
 
@@ -270,7 +270,7 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Smoothing(u
   smoother.Step(parameters, counters);
 
   // The smoothing guard checks one vertex at a time: undo the moves that fold the
-  // surface or make it cut through itself (see MeshExtraction::UndoFoldingMoves).
+  // surface or make it cut through itself (see MeshExtraction::detail::UndoFoldingMoves).
   const std::size_t undone = smoother.UndoFoldingMoves(parameters.degenerateQAreaTolerance);
   const double      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -296,7 +296,7 @@ void
 ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::GenerateData()
 {
   // Every stage, including the free functions below, runs on this filter's work units.
-  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
+  const MeshExtraction::detail::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
   m_Steps.clear();
   m_NumberOfCycles = 0;
   m_TargetQualityReached = false;
@@ -322,8 +322,8 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::GenerateDat
   }
   if (problem.empty())
   {
-    problem =
-      MeshExtraction::ScaleSpaceEdgeDetector<InputMeshType, ImageType>::CheckInputs(input, this->GetInputImage());
+    problem = MeshExtraction::detail::ScaleSpaceEdgeDetector<InputMeshType, ImageType>::CheckInputs(
+      input, this->GetInputImage());
   }
   if (!problem.empty())
   {

@@ -22,6 +22,8 @@
 #include "itkImage.h"
 #include "itkImageToMeshFilter.h"
 #include "itkMeshExtractionMacros.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionSurfaceNet.h"
 #include "itkMeshExtractionSurfaceNets.h"
 #include "itkQuadEdgeMesh.h"
 #include "itkSurfaceNetsImageToMeshFilterEnums.h"
@@ -35,8 +37,11 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 struct SurfaceNetsCellCache;
 struct SurfaceNetsClassificationStatistics;
+} // namespace detail
 } // namespace MeshExtraction
 
 /** \class SurfaceNetsImageToMeshFilter
@@ -65,7 +70,7 @@ struct SurfaceNetsClassificationStatistics;
  * 5. form faces in physical space (unless stage 4 made them of the final nodes) —
  *    FormFaces, MakeSurfaceNetFaces;
  * 6. the high-quality mode (HighQuality): rounds of edge swaps and relaxation on the
- *    triangles — RunHighQualityStage, RunHighQualityMode, MeshExtraction::SurfaceNetsHighQuality;
+ *    triangles — RunHighQualityStage, RunHighQualityMode, MeshExtraction::detail::SurfaceNetsHighQuality;
  * 7. the output mesh — MakeOutputMesh.
  *
  * Guarantees: the output is closed, 2-manifold and consistently oriented with
@@ -169,7 +174,7 @@ public:
    * after the SNERT relaxation, rounds of regularity edge swaps (the decision of
    * EdgeSwapQuadEdgeMeshFilter) followed by SNERT relaxation on the triangle mesh's
    * 1-rings, every node on the iso-surface and near its own cell (see
-   * HighQualityCellDilation); MeshExtraction::SurfaceNetsHighQuality. Swaps and moves
+   * HighQualityCellDilation); MeshExtraction::detail::SurfaceNetsHighQuality. Swaps and moves
    * that would flip, degenerate or cross a triangle, or collapse a component, are
    * undone (the validity guard, itkMeshExtractionValidityGuard.h), so the output keeps
    * every guarantee of plain SurfaceNets. Needs triangles. On strongly anisotropic
@@ -307,16 +312,16 @@ protected:
   /** Relax the net along its links (at most `iterations` times): stage 3, and the
    * relaxation of the high-quality rounds. With `cellCache`, the nodes' cells are read
    * once for every call on this net. */
-  MeshExtraction::SurfaceNetsRelaxationResult
-  RelaxNet(RelaxationEnum                         relaxation,
-           unsigned int                           iterations,
-           MeshExtraction::SurfaceNetsCellCache * cellCache = nullptr);
-  /** Stage 6's rounds (MeshExtraction::SurfaceNetsHighQuality): swaps
+  MeshExtraction::detail::SurfaceNetsRelaxationResult
+  RelaxNet(RelaxationEnum                                 relaxation,
+           unsigned int                                   iterations,
+           MeshExtraction::detail::SurfaceNetsCellCache * cellCache = nullptr);
+  /** Stage 6's rounds (MeshExtraction::detail::SurfaceNetsHighQuality): swaps
    * and relaxation (RelaxNet) on the triangles, every change checked by the validity
    * guard. */
   void
   RunHighQualityMode(std::vector<MeshExtraction::TriangleIndices> & triangles,
-                     MeshExtraction::SurfaceNetsCellCache *         cellCache);
+                     MeshExtraction::detail::SurfaceNetsCellCache * cellCache);
   /** Stage 7: the faces (node indices) with the nodes in physical space, into the
    * output mesh. `points`: the nodes' physical points if already made (the face
    * split made them), else null. */
@@ -328,7 +333,7 @@ protected:
    * buffer's first voxel, and the face split of the Triangulation setting. */
   void
   GetGeometry(Matrix<double, 3, 3> & indexToPhysical, MeshExtraction::Vec3 & first) const;
-  MeshExtraction::QuadSplit
+  MeshExtraction::detail::QuadSplit
   GetQuadSplit() const;
   /** The images the stages read: the input and LabelImage, or their resampled copies
    * (ResampleToIsotropicVoxels). */
@@ -369,9 +374,9 @@ private:
   PrepareInputs();
   /** Stage 1's two ways: by label (the input or LabelImage), or by iso-value. Each
    * returns what it saw of the greyscale input (its NaN voxel). */
-  MeshExtraction::SurfaceNetsClassificationStatistics
+  MeshExtraction::detail::SurfaceNetsClassificationStatistics
   ClassifyCellsByLabel();
-  MeshExtraction::SurfaceNetsClassificationStatistics
+  MeshExtraction::detail::SurfaceNetsClassificationStatistics
   ClassifyCellsByIsoValue();
   /** The image index of a voxel given relative to the buffer's first voxel. */
   template <typename TImage>
@@ -383,7 +388,7 @@ private:
   /** Stage 3: relax the nodes (MaximumNumberOfIterations); returns their start
    * positions where stage 4 runs (else empty). `cellCache` is kept for stage 6. */
   MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>
-  RelaxNodes(RelaxationEnum relaxation, MeshExtraction::SurfaceNetsCellCache & cellCache);
+  RelaxNodes(RelaxationEnum relaxation, MeshExtraction::detail::SurfaceNetsCellCache & cellCache);
   /** Whether stage 4 runs: PreventSelfIntersections, and the nodes were relaxed. */
   bool
   PreventsSelfIntersections(RelaxationEnum relaxation) const
@@ -401,7 +406,7 @@ private:
   FormFaces(Faces & faces);
   /** Stage 6 (HighQuality): the high-quality rounds on the triangles. */
   void
-  RunHighQualityStage(Faces & faces, MeshExtraction::SurfaceNetsCellCache & cellCache);
+  RunHighQualityStage(Faces & faces, MeshExtraction::detail::SurfaceNetsCellCache & cellCache);
   /** Stage 7's parts: the points, and the cells of an itk::Mesh. */
   void
   MakeOutputPoints(const MeshExtraction::Vec3 * points);

@@ -108,8 +108,8 @@ template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCells()
 {
-  const InputImageType *                                    input = this->GetSampledInput();
-  const MeshExtraction::SurfaceNetsClassificationStatistics greyscale =
+  const InputImageType *                                            input = this->GetSampledInput();
+  const MeshExtraction::detail::SurfaceNetsClassificationStatistics greyscale =
     (this->GetSampledLabelImage() != nullptr || m_ClassifyByLabel) ? this->ClassifyCellsByLabel()
                                                                    : this->ClassifyCellsByIsoValue();
   if (greyscale.foundNaN)
@@ -134,10 +134,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::BufferIndex
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
-MeshExtraction::SurfaceNetsClassificationStatistics
+MeshExtraction::detail::SurfaceNetsClassificationStatistics
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCellsByLabel()
 {
   using namespace MeshExtraction;
+  using namespace MeshExtraction::detail;
   const InputImageType *              input = this->GetSampledInput();
   const LabelImageType *              labels = this->GetSampledLabelImage();
   const unsigned int                  workUnits = this->GetNumberOfWorkUnits();
@@ -171,10 +172,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
-MeshExtraction::SurfaceNetsClassificationStatistics
+MeshExtraction::detail::SurfaceNetsClassificationStatistics
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCellsByIsoValue()
 {
   using namespace MeshExtraction;
+  using namespace MeshExtraction::detail;
   const InputImageType * input = this->GetSampledInput();
   const auto range = SurfaceNetsVoxelRange<InputPixelType>::FromIsoValue(m_IsoValue, m_InsideIsAboveIsoValue);
   SurfaceNetsClassificationStatistics greyscale =
@@ -207,13 +209,14 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ClassifyCel
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
-MeshExtraction::SurfaceNetsRelaxationResult
+MeshExtraction::detail::SurfaceNetsRelaxationResult
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
-  RelaxationEnum                         relaxation,
-  unsigned int                           iterations,
-  MeshExtraction::SurfaceNetsCellCache * cellCache)
+  RelaxationEnum                                 relaxation,
+  unsigned int                                   iterations,
+  MeshExtraction::detail::SurfaceNetsCellCache * cellCache)
 {
   using namespace MeshExtraction;
+  using namespace MeshExtraction::detail;
   const InputImageType *          input = this->GetSampledInput();
   SurfaceNetsRelaxationParameters p;
   p.kind = relaxation;
@@ -265,9 +268,10 @@ template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQualityMode(
   std::vector<MeshExtraction::TriangleIndices> & triangles,
-  MeshExtraction::SurfaceNetsCellCache *         cellCache)
+  MeshExtraction::detail::SurfaceNetsCellCache * cellCache)
 {
   using namespace MeshExtraction;
+  using namespace MeshExtraction::detail;
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
@@ -415,17 +419,17 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetGeometry
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
-MeshExtraction::QuadSplit
+MeshExtraction::detail::QuadSplit
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GetQuadSplit() const
 {
   switch (m_Triangulation)
   {
     case TriangulationEnum::Delaunay:
-      return MeshExtraction::QuadSplit::Delaunay;
+      return MeshExtraction::detail::QuadSplit::Delaunay;
     case TriangulationEnum::Quadrilaterals:
-      return MeshExtraction::QuadSplit::KeepQuads;
+      return MeshExtraction::detail::QuadSplit::KeepQuads;
     default:
-      return MeshExtraction::QuadSplit::ShortestDiagonal;
+      return MeshExtraction::detail::QuadSplit::ShortestDiagonal;
   }
 }
 
@@ -439,7 +443,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputM
   OutputMeshType * output = this->GetOutput();
   output->Initialize();
   this->MakeOutputPoints(points);
-  if constexpr (MeshExtraction::Detail::IsQuadEdgeMesh<OutputMeshType>::value)
+  if constexpr (MeshExtraction::detail::IsQuadEdgeMesh<OutputMeshType>::value)
   {
     typename OutputMeshType::PointIdList ids(polygonSize);
     for (std::size_t f = 0; f < polygons.size(); ++f)
@@ -466,6 +470,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeOutputP
   const MeshExtraction::Vec3 * points)
 {
   using namespace MeshExtraction;
+  using namespace MeshExtraction::detail;
   Matrix<double, 3, 3> M;
   Vec3                 first;
   this->GetGeometry(M, first);
@@ -574,7 +579,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeBlockAl
 {
   try
   {
-    MeshExtraction::BlockAllocatedCell<TCell>::MakeCells(polygons.size(), vector.begin());
+    MeshExtraction::detail::BlockAllocatedCell<TCell>::MakeCells(polygons.size(), vector.begin());
   }
   catch (const std::bad_alloc &)
   {
@@ -584,16 +589,17 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeBlockAl
   // a second pass rather than as each cell is made: that changes the order of the
   // heap's allocations, which made later runs of a process much slower.
   constexpr unsigned int polygonSize = TCell::NumberOfPoints;
-  MeshExtraction::ParallelForBlocks(polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t f = begin; f < end; ++f)
-    {
-      auto * cell = static_cast<TCell *>(vector[f]);
-      for (unsigned int k = 0; k < polygonSize; ++k)
+  MeshExtraction::detail::ParallelForBlocks(
+    polygons.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t f = begin; f < end; ++f)
       {
-        cell->TCell::SetPointId(static_cast<int>(k), polygons[f][k]);
+        auto * cell = static_cast<TCell *>(vector[f]);
+        for (unsigned int k = 0; k < polygonSize; ++k)
+        {
+          cell->TCell::SetPointId(static_cast<int>(k), polygons[f][k]);
+        }
       }
-    }
-  });
+    });
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -601,10 +607,10 @@ void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateData()
 {
   // Every stage, including the free functions they call, runs on this filter's work units.
-  const MeshExtraction::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
-  const RelaxationEnum                          relaxation = this->PrepareInputs();
-  MeshExtraction::SurfaceNetsCellCache          cellCache; // the high-quality stage's cells, read once
-  Faces                                         faces;
+  const MeshExtraction::detail::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
+  const RelaxationEnum                                  relaxation = this->PrepareInputs();
+  MeshExtraction::detail::SurfaceNetsCellCache          cellCache; // the high-quality stage's cells, read once
+  Faces                                                 faces;
   this->UpdateProgress(0.0f);
   this->ClassifyCells(); // 1
   this->UpdateProgress(0.2f);
@@ -653,7 +659,7 @@ template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::BuildNet()
 {
-  MeshExtraction::BuildSurfaceNet(m_Net, m_CellMargin, this->GetNumberOfWorkUnits());
+  MeshExtraction::detail::BuildSurfaceNet(m_Net, m_CellMargin, this->GetNumberOfWorkUnits());
   m_NumberOfNodes = m_Net.positions.size();
   m_NumberOfSplitCells = m_Net.numberOfSplitCells;
 }
@@ -661,8 +667,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::BuildNet()
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 auto
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNodes(
-  RelaxationEnum                         relaxation,
-  MeshExtraction::SurfaceNetsCellCache & cellCache) -> MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>
+  RelaxationEnum                                 relaxation,
+  MeshExtraction::detail::SurfaceNetsCellCache & cellCache) -> MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>
 {
   // The start positions, toward which stage 4 moves nodes back (a copy only when it runs).
   MeshExtraction::LargeBlockVector<MeshExtraction::Vec3> initial;
@@ -696,7 +702,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSelfI
   // The faces of the final positions, and the nodes' physical points they were made with
   // (rounded to float for a float mesh, as the output rounds them anyway), so that the
   // stages after need not make them again.
-  m_NumberOfNodesMovedBack = MeshExtraction::RemoveSurfaceNetSelfIntersections(
+  m_NumberOfNodesMovedBack = MeshExtraction::detail::RemoveSurfaceNetSelfIntersections(
     m_Net, initial, first, M, this->GetQuadSplit(), RoundsToFloat, &faces.polygons, &faces.checkedPoints);
 }
 
@@ -711,15 +717,15 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::FormFaces(F
   Matrix<double, 3, 3> M;
   MeshExtraction::Vec3 first;
   this->GetGeometry(M, first);
-  MeshExtraction::MakeSurfaceNetFaces(
+  MeshExtraction::detail::MakeSurfaceNetFaces(
     m_Net, first, M, this->GetQuadSplit(), faces.points, faces.polygons, faces.polygonSize);
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQualityStage(
-  Faces &                                faces,
-  MeshExtraction::SurfaceNetsCellCache & cellCache)
+  Faces &                                        faces,
+  MeshExtraction::detail::SurfaceNetsCellCache & cellCache)
 {
   m_NumberOfSwaps = 0;
   m_NumberOfRoundsPerformed = 0;

@@ -19,49 +19,10 @@
 #define itkSymmetricSimilarityICPRegistration_hxx
 
 #include "itkSymmetricSimilarityICPRegistration.h"
-#include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionSymmetricICP.h"
-
-#include <cmath>
 
 namespace itk
 {
-namespace MeshExtraction
-{
-namespace detail
-{
-/** The triangles of `mesh` as arrays; throws naming `role` when it has none or a
- * coordinate is not finite. */
-template <typename TMesh>
-IndexedTriangleMesh
-CheckedTriangleMesh(const TMesh * mesh, const char * role)
-{
-  if (mesh == nullptr)
-  {
-    itkGenericExceptionMacro("No " << role << " mesh: set it first.");
-  }
-  IndexedTriangleMesh indexed = MakeIndexedTriangleMesh(*mesh);
-  if (indexed.triangles.empty())
-  {
-    itkGenericExceptionMacro("The " << role << " mesh has no triangles (" << mesh->GetNumberOfPoints() << " points, "
-                                    << mesh->GetNumberOfCells() << " cells).");
-  }
-  for (std::size_t i = 0; i < indexed.points.size(); ++i)
-  {
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      if (!std::isfinite(indexed.points[i][d]))
-      {
-        itkGenericExceptionMacro("The " << role << " mesh's point " << indexed.pointIds[i]
-                                        << " has a coordinate that is not finite.");
-      }
-    }
-  }
-  return indexed;
-}
-} // namespace detail
-} // namespace MeshExtraction
-
 template <typename TMesh>
 void
 SymmetricSimilarityICPRegistration<TMesh>::Update()

@@ -73,7 +73,6 @@ public:
 
   using InputMeshType = TInputMesh;
   using OutputMeshType = TOutputMesh;
-  using SmootherType = MeshExtraction::QuadEdgeMeshVertexSmoother<OutputMeshType>;
   using CoefficientsComputation = MatrixCoefficients<OutputMeshType>;
 
   using SmoothingWeightsEnum = MeshExtractionEnums::SmoothingWeights;
@@ -153,6 +152,9 @@ public:
   itkGetConstMacro(NumberOfMovableVertices, SizeValueType);
 
 protected:
+  /** The per-vertex smoother the filter runs (internal: itk::MeshExtraction::detail). */
+  using SmootherType = MeshExtraction::detail::QuadEdgeMeshVertexSmoother<OutputMeshType>;
+
   TaubinSmoothingQuadEdgeMeshFilter() = default;
   ~TaubinSmoothingQuadEdgeMeshFilter() override = default;
   void

@@ -196,22 +196,6 @@ private:
   FixedArray<double, 3>  m_Scales{ 1.0 };
   FixedArray<double, 3>  m_LandmarkResiduals{ 0.0 };
 };
-
-namespace MeshExtraction
-{
-/** The rotation taking the unit vector `from` onto the unit vector `to` along the
- * shortest arc (about from x to); for opposite vectors a half turn about an axis
- * perpendicular to `from`. */
-MeshExtraction_EXPORT Matrix<double, 3, 3>
-                      ShortestArcRotation(const Vector<double, 3> & from, const Vector<double, 3> & to);
-/** The rotation by `angle` (radians, right-handed) about the unit vector `axis`
- * (Rodrigues' formula). */
-MeshExtraction_EXPORT Matrix<double, 3, 3>
-                      AxisAngleRotation(const Vector<double, 3> & axis, double angle);
-/** The part of v perpendicular to the unit vector u. */
-MeshExtraction_EXPORT Vector<double, 3>
-                      PerpendicularPart(const Vector<double, 3> & v, const Vector<double, 3> & u);
-} // namespace MeshExtraction
 } // namespace itk
 
 #ifndef ITK_MANUAL_INSTANTIATION

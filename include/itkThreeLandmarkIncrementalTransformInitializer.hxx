@@ -20,6 +20,7 @@
 
 #include "itkThreeLandmarkIncrementalTransformInitializer.h"
 #include "itkAffineTransform.h"
+#include "itkMeshExtractionLandmarkGeometry.h"
 #include "itkSimilarity3DTransform.h"
 
 #include <cmath>
@@ -57,7 +58,7 @@ ThreeLandmarkIncrementalTransformInitializer<TTransform>::VerifyConfiguration(co
     itkExceptionMacro("The " << space << " landmarks A " << l[0] << " and B " << l[1]
                              << " are at the same place: they define no axis.");
   }
-  const VectorType perpendicular = MeshExtraction::PerpendicularPart(ac, ab / ab.GetNorm());
+  const VectorType perpendicular = MeshExtraction::detail::PerpendicularPart(ac, ab / ab.GetNorm());
   if (!(perpendicular.GetNorm() > m_DegeneracyTolerance * extent))
   {
     itkExceptionMacro("The " << space << " landmark C " << l[2] << " lies on the line through A " << l[0] << " and B "
@@ -110,9 +111,9 @@ ThreeLandmarkIncrementalTransformInitializer<TTransform>::ComputeDistension(cons
   const LandmarkPointContainer & f = m_FixedLandmarks;
   const LandmarkPointContainer & m = m_MovingLandmarks;
   const double                   alongAxis = (m[1] - m[0]).GetNorm() / (f[1] - f[0]).GetNorm();
-  const VectorType               perpendicularFixed = MeshExtraction::PerpendicularPart(f[2] - f[0], axisFixed);
+  const VectorType               perpendicularFixed = MeshExtraction::detail::PerpendicularPart(f[2] - f[0], axisFixed);
   const VectorType               perpendicularMoving =
-    MeshExtraction::PerpendicularPart(m[2] - m[0], (m[1] - m[0]) / (m[1] - m[0]).GetNorm());
+    MeshExtraction::detail::PerpendicularPart(m[2] - m[0], (m[1] - m[0]) / (m[1] - m[0]).GetNorm());
   m_Scales.Fill(1.0);
   if (m_Distension == DistensionEnum::Isotropic)
   {
@@ -200,13 +201,13 @@ ThreeLandmarkIncrementalTransformInitializer<TTransform>::InitializeTransform()
   // Step 2: B by the shortest-arc rotation about A.
   const VectorType axisFixed = (f[1] - f[0]) / (f[1] - f[0]).GetNorm();
   const VectorType axisMoving = (m[1] - m[0]) / (m[1] - m[0]).GetNorm();
-  const MatrixType first = MeshExtraction::ShortestArcRotation(axisFixed, axisMoving);
+  const MatrixType first = MeshExtraction::detail::ShortestArcRotation(axisFixed, axisMoving);
   // Step 3: C by the rotation about the axis AB (now the moving axis) through the
   // signed angle between the perpendicular parts of C's directions.
-  const VectorType rotatedC = MeshExtraction::PerpendicularPart(first * (f[2] - f[0]), axisMoving);
-  const VectorType targetC = MeshExtraction::PerpendicularPart(m[2] - m[0], axisMoving);
+  const VectorType rotatedC = MeshExtraction::detail::PerpendicularPart(first * (f[2] - f[0]), axisMoving);
+  const VectorType targetC = MeshExtraction::detail::PerpendicularPart(m[2] - m[0], axisMoving);
   const double     angle = std::atan2(axisMoving * CrossProduct(rotatedC, targetC), rotatedC * targetC);
-  m_Rotation = MeshExtraction::AxisAngleRotation(axisMoving, angle) * first;
+  m_Rotation = MeshExtraction::detail::AxisAngleRotation(axisMoving, angle) * first;
 
   MatrixType scaling;
   this->ComputeDistension(axisFixed, scaling);

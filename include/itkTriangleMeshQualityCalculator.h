@@ -20,7 +20,8 @@
 
 #include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionMacros.h"
-#include "itkMeshExtractionQualityAnalysis.h"
+#include "itkMeshExtractionTriangleGeometry.h"
+#include "itkMeshExtractionTriangleMeshQualityReport.h"
 #include "itkObject.h"
 #include "itkObjectFactory.h"
 
@@ -111,7 +112,7 @@ public:
   std::string
   GetReportAsJSON() const
   {
-    return MeshExtraction::JSONText(m_Report);
+    return MeshExtraction::detail::JSONText(m_Report);
   }
   double
   GetMeanQArea() const

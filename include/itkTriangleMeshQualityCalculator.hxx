@@ -19,6 +19,8 @@
 #define itkTriangleMeshQualityCalculator_hxx
 
 #include "itkTriangleMeshQualityCalculator.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionQualityAnalysis.h"
 
 namespace itk
 {
@@ -36,11 +38,11 @@ TriangleMeshQualityCalculator<TMesh>::Compute()
   {
     reference = MeshExtraction::MakeIndexedTriangleMesh(*m_ReferenceMesh);
   }
-  MeshExtraction::TriangleMeshQualityOptions options;
+  MeshExtraction::detail::TriangleMeshQualityOptions options;
   options.degenerateQAreaTolerance = m_DegenerateQAreaTolerance;
   options.computeSelfIntersections = m_ComputeSelfIntersections;
   options.computeOutwardOrientation = m_ComputeOutwardOrientation;
-  m_Report = MeshExtraction::AnalyzeTriangleMesh(
+  m_Report = MeshExtraction::detail::AnalyzeTriangleMesh(
     mesh, options, m_ReferenceMesh.IsNotNull() ? &reference : nullptr, &m_TriangleMeasures, &m_VertexSmoothness);
   m_TriangleCellIdentifiers = mesh.cellIds;
 }

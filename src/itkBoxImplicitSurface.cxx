@@ -24,11 +24,11 @@ namespace itk
 {
 namespace
 {
-using MeshExtraction::LocalCoordinates;
 using MeshExtraction::Norm;
-using MeshExtraction::PhysicalPoint;
-using MeshExtraction::RotatedBoxHalfExtent;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::LocalCoordinates;
+using MeshExtraction::detail::PhysicalPoint;
+using MeshExtraction::detail::RotatedBoxHalfExtent;
 } // namespace
 
 BoxImplicitSurface::BoxImplicitSurface()

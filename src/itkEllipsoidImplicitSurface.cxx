@@ -24,10 +24,10 @@ namespace itk
 {
 namespace
 {
-using MeshExtraction::ClosestPointOnEllipsoid;
-using MeshExtraction::LocalCoordinates;
-using MeshExtraction::PhysicalPoint;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::ClosestPointOnEllipsoid;
+using MeshExtraction::detail::LocalCoordinates;
+using MeshExtraction::detail::PhysicalPoint;
 } // namespace
 
 EllipsoidImplicitSurface::EllipsoidImplicitSurface()

@@ -102,7 +102,7 @@ ImplicitSurfaceFunction::RequireDirection(const char * parameterName, const Vect
 ImplicitSurfaceFunction::MatrixType
 ImplicitSurfaceFunction::RequireRotation(const char * parameterName, const MatrixType & value) const
 {
-  const double maximumError = MeshExtraction::OrthogonalityError(value);
+  const double maximumError = MeshExtraction::detail::OrthogonalityError(value);
   if (!(maximumError <= 1e-6))
   {
     itkExceptionMacro(<< parameterName << " must be an orthogonal matrix (orthonormal columns within 1e-6), got "
@@ -110,7 +110,7 @@ ImplicitSurfaceFunction::RequireRotation(const char * parameterName, const Matri
   }
   // Gram-Schmidt on the columns, so that R^T R = I to rounding and distances
   // computed in the local frame are distances in physical space.
-  return MeshExtraction::OrthonormalizeColumns(value);
+  return MeshExtraction::detail::OrthonormalizeColumns(value);
 }
 
 void

@@ -32,6 +32,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 constexpr std::size_t HugePage = std::size_t{ 2 } << 20;
@@ -107,5 +109,6 @@ ReleaseLargeBlock(void * block, std::size_t bytes) noexcept
 #endif
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -25,6 +25,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 // =================================================================================
 // Frames
 // =================================================================================
@@ -474,5 +476,6 @@ ClosestPointOnEllipsoid(const Vec3 & semiAxes, const Vec3 & q, Vec3 & closest)
   return distance;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -16,7 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionClosedSurfaceEdgeSwap.h"
-#include "itkMeshExtractionBuffer.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 
 #include <algorithm>
 #include <limits>
@@ -25,6 +25,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 namespace
 {
@@ -300,5 +302,6 @@ SwapEdges(const std::vector<Vec3> &          physical,
   return records;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -25,6 +25,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 std::vector<double>
 ScaleSpaceScales(double maximumScale, double minimumScale, unsigned int scalesPerOctave)
 {
@@ -104,5 +106,6 @@ GaussianKernel(double sigma, double spacing, unsigned int order)
   return std::vector<float>(k.begin(), k.end());
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -18,6 +18,7 @@
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 namespace itk
@@ -337,6 +338,8 @@ CountBoundaryLoops(std::size_t numberOfPoints, MeshTopology & topo)
 }
 } // namespace
 
+namespace detail
+{
 void
 SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIndices & t0, TriangleIndices & t1)
 {
@@ -354,8 +357,6 @@ SplitQuad(const IndexedTriangleMesh & mesh, const std::uint32_t q[4], TriangleIn
   }
 }
 
-namespace Detail
-{
 PointIdentifierMap::PointIdentifierMap(IdentifierType maximumIdentifier, std::size_t numberOfPoints)
     : m_MaximumIdentifier(maximumIdentifier)
     , m_Dense(maximumIdentifier < 4 * static_cast<IdentifierType>(numberOfPoints) + 1024)
@@ -368,7 +369,19 @@ PointIdentifierMap::ThrowMissingPoint(IdentifierType id, IdentifierType cellId)
   itkGenericExceptionMacro("MeshExtraction: cell " << cellId << " references point " << id
                                                    << ", which the mesh does not have.");
 }
-} // namespace Detail
+} // namespace detail
+
+std::uint32_t
+MeshTopology::Neighbor(std::uint32_t triangle, unsigned int side) const
+{
+  const Edge & e = edges[triangleEdges[triangle][side]];
+  if (e.numberOfIncidences != 2)
+  {
+    return std::numeric_limits<std::uint32_t>::max();
+  }
+  const Incidence & i0 = incidences[e.firstIncidence];
+  return i0.triangle == triangle ? incidences[e.firstIncidence + 1].triangle : i0.triangle;
+}
 
 MeshTopology
 BuildMeshTopology(const IndexedTriangleMesh & mesh)

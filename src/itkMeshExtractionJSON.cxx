@@ -24,6 +24,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 std::ostream &
 operator<<(std::ostream & os, const JSONNumber & number)
 {
@@ -57,5 +59,6 @@ operator<<(std::ostream & os, const JSONString & text)
   }
   return os << '"';
 }
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -15,7 +15,7 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-#include "itkThreeLandmarkIncrementalTransformInitializer.h"
+#include "itkMeshExtractionLandmarkGeometry.h"
 #include "itkVersor.h"
 
 #include <cmath>
@@ -23,6 +23,8 @@
 namespace itk
 {
 namespace MeshExtraction
+{
+namespace detail
 {
 Vector<double, 3>
 PerpendicularPart(const Vector<double, 3> & v, const Vector<double, 3> & u)
@@ -71,5 +73,6 @@ ShortestArcRotation(const Vector<double, 3> & from, const Vector<double, 3> & to
   perpendicular.Normalize();
   return AxisAngleRotation(perpendicular, itk::Math::pi);
 }
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -21,6 +21,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 unsigned int &
 ThreadNumberOfWorkUnits()
 {
@@ -38,5 +40,6 @@ ScopedNumberOfWorkUnits::~ScopedNumberOfWorkUnits()
 {
   ThreadNumberOfWorkUnits() = m_Previous;
 }
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

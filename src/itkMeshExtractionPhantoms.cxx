@@ -37,6 +37,13 @@ namespace MeshExtraction
 {
 namespace
 {
+using detail::FrameFromNormal;
+using detail::Normalized;
+using detail::OrthogonalityError;
+using detail::OrthonormalizeColumns;
+using detail::RotationAboutX;
+using detail::RotationAboutZ;
+
 struct ShapeName
 {
   PhantomShape shape;

@@ -25,6 +25,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 // ---------------------------------------------------------------------------
@@ -672,5 +674,6 @@ CertifyFan(const Vec3 * points, std::uint32_t v, const FanCorner * corners, std:
   return FanIsEmbeddedStar(points[v], scratch.ringPoints.data(), static_cast<unsigned int>(k));
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -27,6 +27,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 Vec3
@@ -186,5 +188,6 @@ ComponentNestingParity(const IndexedTriangleMesh & mesh, const MeshTopology & to
   return parity;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

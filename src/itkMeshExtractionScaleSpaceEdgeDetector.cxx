@@ -24,6 +24,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 std::string
 DescribeInvalidEdgeDetectionParameters(const ScaleSpaceEdgeDetectionParameters & p)
 {
@@ -127,5 +129,6 @@ IsValidEdgeDetectionMove(const IndexedTriangleMesh & mesh,
   return true;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

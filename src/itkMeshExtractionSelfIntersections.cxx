@@ -27,6 +27,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 SortedPairs(const std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> & found)
 {
@@ -577,5 +579,6 @@ FindSelfIntersections(const IndexedTriangleMesh &        mesh,
     });
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

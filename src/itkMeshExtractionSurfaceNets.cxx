@@ -16,8 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionSurfaceNets.h"
-#include "itkMeshExtractionBuffer.h"
-#include "itkSurfaceNetsImageToMeshFilterEnums.h"
+#include "itkMeshExtractionLargeBlockVector.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionPredicates.h"
 #include "itkMeshExtractionQualityAnalysis.h"
@@ -31,11 +30,31 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <ostream>
 
 namespace itk
 {
 namespace MeshExtraction
+{
+std::int64_t
+SurfaceNet::FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const
+{
+  if (y < -1 || y >= size[1] || z < -1 || z >= size[2])
+  {
+    return -1;
+  }
+  const std::int64_t row = RowOf(y, z);
+  const auto         begin = cells.begin() + rowStart[row];
+  const auto         end = cells.begin() + rowStart[row + 1];
+  const auto         found =
+    std::lower_bound(begin, end, x, [](const SurfaceCell & c, std::int64_t value) { return c.x < value; });
+  if (found == end || found->x != x)
+  {
+    return -1;
+  }
+  return found - cells.begin();
+}
+
+namespace detail
 {
 namespace
 {
@@ -692,25 +711,6 @@ SurfaceNetsCellTable::Get()
   return table;
 }
 
-std::int64_t
-SurfaceNet::FindCell(std::int64_t x, std::int64_t y, std::int64_t z) const
-{
-  if (y < -1 || y >= size[1] || z < -1 || z >= size[2])
-  {
-    return -1;
-  }
-  const std::int64_t row = RowOf(y, z);
-  const auto         begin = cells.begin() + rowStart[row];
-  const auto         end = cells.begin() + rowStart[row + 1];
-  const auto         found =
-    std::lower_bound(begin, end, x, [](const SurfaceCell & c, std::int64_t value) { return c.x < value; });
-  if (found == end || found->x != x)
-  {
-    return -1;
-  }
-  return found - cells.begin();
-}
-
 void
 BuildSurfaceNet(SurfaceNet & net, double margin, unsigned int numberOfWorkUnits)
 {
@@ -841,52 +841,6 @@ ToPhysical(const Vec3 *                 index,
   }
 }
 
+} // namespace detail
 } // namespace MeshExtraction
-
-std::ostream &
-operator<<(std::ostream & out, SurfaceNetsImageToMeshFilterEnums::Relaxation value)
-{
-  switch (value)
-  {
-    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Automatic:
-      return out << "Automatic";
-    case SurfaceNetsImageToMeshFilterEnums::Relaxation::None:
-      return out << "None";
-    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Averaging:
-      return out << "Averaging";
-    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Gradient:
-      return out << "Gradient";
-    case SurfaceNetsImageToMeshFilterEnums::Relaxation::Combined:
-      return out << "Combined";
-  }
-  return out << "INVALID Relaxation";
-}
-
-std::ostream &
-operator<<(std::ostream & out, SurfaceNetsImageToMeshFilterEnums::Triangulation value)
-{
-  switch (value)
-  {
-    case SurfaceNetsImageToMeshFilterEnums::Triangulation::ShortestDiagonal:
-      return out << "ShortestDiagonal";
-    case SurfaceNetsImageToMeshFilterEnums::Triangulation::Delaunay:
-      return out << "Delaunay";
-    case SurfaceNetsImageToMeshFilterEnums::Triangulation::Quadrilaterals:
-      return out << "Quadrilaterals";
-  }
-  return out << "INVALID Triangulation";
-}
-
-std::ostream &
-operator<<(std::ostream & out, SurfaceNetsImageToMeshFilterEnums::Gradient value)
-{
-  switch (value)
-  {
-    case SurfaceNetsImageToMeshFilterEnums::Gradient::CentralDifference:
-      return out << "CentralDifference";
-    case SurfaceNetsImageToMeshFilterEnums::Gradient::GaussianDerivative:
-      return out << "GaussianDerivative";
-  }
-  return out << "INVALID Gradient";
-}
 } // namespace itk

@@ -23,6 +23,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 SurfaceNetsHighQuality::SurfaceNetsHighQuality(SurfaceNet &                             net,
                                                const Vec3 &                             origin,
                                                const Matrix<double, 3, 3> &             indexToPhysical,
@@ -163,5 +165,6 @@ SurfaceNetsHighQuality::Physical() const
   return ToPhysical(m_Net.positions, m_Origin, m_IndexToPhysical, m_Parameters.roundToFloat);
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

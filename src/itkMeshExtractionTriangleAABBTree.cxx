@@ -25,6 +25,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 /** Sort (code, slot) pairs by code, then slot: LSD radix sort on 16-bit digits of the
@@ -383,5 +385,6 @@ TriangleAABBTree::FindNearest(const Vec3 & p, std::uint32_t hint) const
   return best;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

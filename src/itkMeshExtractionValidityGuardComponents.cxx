@@ -32,6 +32,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
@@ -233,5 +235,6 @@ ComponentsAMoveMayHavePassed(const IndexedTriangleMesh & mesh,
   return result;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -31,6 +31,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 constexpr std::uint32_t None = std::numeric_limits<std::uint32_t>::max();
@@ -406,5 +408,6 @@ PullBackInvalidMoves(LargeBlockVector<Vec3> &       positions,
     .Run(tree);
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -35,6 +35,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 using FacePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
@@ -642,5 +644,6 @@ RemoveSurfaceNetSelfIntersections(SurfaceNet &                                  
   return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), true));
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -30,6 +30,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 /** \brief The steps of UndoIntersectingSwaps() on the swaps of one sweep.
@@ -324,5 +326,6 @@ FindCrossingNewTriangles(const IndexedTriangleMesh & mesh, const std::vector<Poi
   return crossing;
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

@@ -29,6 +29,8 @@ namespace itk
 {
 namespace MeshExtraction
 {
+namespace detail
+{
 namespace
 {
 /** \brief The steps of UndoFoldingMoves() on one mesh.
@@ -401,5 +403,6 @@ UndoFoldingMoves(IndexedTriangleMesh &      mesh,
   return FoldingMoveUndo(mesh, topology, startPositions, tolerance, reference).Run();
 }
 
+} // namespace detail
 } // namespace MeshExtraction
 } // namespace itk

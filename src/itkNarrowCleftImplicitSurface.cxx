@@ -24,14 +24,14 @@ namespace itk
 {
 namespace
 {
-using MeshExtraction::ClosestPointOnRectangle;
-using MeshExtraction::Infinity;
-using MeshExtraction::LocalCoordinates;
 using MeshExtraction::MakeVec3;
-using MeshExtraction::PhysicalPoint;
-using MeshExtraction::RotatedBoxHalfExtent;
 using MeshExtraction::SquaredNorm;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::ClosestPointOnRectangle;
+using MeshExtraction::detail::Infinity;
+using MeshExtraction::detail::LocalCoordinates;
+using MeshExtraction::detail::PhysicalPoint;
+using MeshExtraction::detail::RotatedBoxHalfExtent;
 } // namespace
 
 NarrowCleftImplicitSurface::NarrowCleftImplicitSurface()

@@ -23,10 +23,10 @@ namespace itk
 namespace
 {
 using MeshExtraction::Dot;
-using MeshExtraction::Infinity;
-using MeshExtraction::ToPoint3;
 using MeshExtraction::ToVec3;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::Infinity;
+using MeshExtraction::detail::ToPoint3;
 } // namespace
 
 PlaneImplicitSurface::PlaneImplicitSurface()

@@ -24,17 +24,17 @@ namespace itk
 {
 namespace
 {
-using MeshExtraction::Circle3;
-using MeshExtraction::ClosestPointOnCircle;
-using MeshExtraction::IntersectTwoSpheres;
-using MeshExtraction::NearestCandidate;
 using MeshExtraction::Norm;
-using MeshExtraction::RadialProjection;
-using MeshExtraction::StrictlyInsideBall;
-using MeshExtraction::StrictlyOutsideBall;
-using MeshExtraction::ToPoint3;
 using MeshExtraction::ToVec3;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::Circle3;
+using MeshExtraction::detail::ClosestPointOnCircle;
+using MeshExtraction::detail::IntersectTwoSpheres;
+using MeshExtraction::detail::NearestCandidate;
+using MeshExtraction::detail::RadialProjection;
+using MeshExtraction::detail::StrictlyInsideBall;
+using MeshExtraction::detail::StrictlyOutsideBall;
+using MeshExtraction::detail::ToPoint3;
 } // namespace
 
 SphereDifferenceImplicitSurface::SphereDifferenceImplicitSurface()

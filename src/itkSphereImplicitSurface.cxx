@@ -23,10 +23,10 @@ namespace itk
 namespace
 {
 using MeshExtraction::Norm;
-using MeshExtraction::RadialProjection;
-using MeshExtraction::ToPoint3;
 using MeshExtraction::ToVec3;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::RadialProjection;
+using MeshExtraction::detail::ToPoint3;
 } // namespace
 
 SphereImplicitSurface::SphereImplicitSurface()

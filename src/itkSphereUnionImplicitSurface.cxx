@@ -26,19 +26,19 @@ namespace itk
 {
 namespace
 {
-using MeshExtraction::Circle3;
-using MeshExtraction::ClosestPointOnCircle;
-using MeshExtraction::Infinity;
-using MeshExtraction::IntersectThreeSpheres;
-using MeshExtraction::IntersectTwoSpheres;
-using MeshExtraction::NearestCandidate;
 using MeshExtraction::Norm;
-using MeshExtraction::Point3;
-using MeshExtraction::RadialProjection;
-using MeshExtraction::StrictlyInsideBall;
-using MeshExtraction::ToPoint3;
 using MeshExtraction::ToVec3;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::Circle3;
+using MeshExtraction::detail::ClosestPointOnCircle;
+using MeshExtraction::detail::Infinity;
+using MeshExtraction::detail::IntersectThreeSpheres;
+using MeshExtraction::detail::IntersectTwoSpheres;
+using MeshExtraction::detail::NearestCandidate;
+using MeshExtraction::detail::Point3;
+using MeshExtraction::detail::RadialProjection;
+using MeshExtraction::detail::StrictlyInsideBall;
+using MeshExtraction::detail::ToPoint3;
 
 /** The search for the point of the union's boundary closest to p, over the candidates
  * of the class documentation in a fixed order: the radial projections onto the

@@ -27,10 +27,10 @@ namespace
 {
 using MeshExtraction::Dot;
 using MeshExtraction::Norm;
-using MeshExtraction::RadialDirection;
-using MeshExtraction::ToPoint3;
 using MeshExtraction::ToVec3;
 using MeshExtraction::Vec3;
+using MeshExtraction::detail::RadialDirection;
+using MeshExtraction::detail::ToPoint3;
 } // namespace
 
 TorusImplicitSurface::TorusImplicitSurface()

@@ -211,6 +211,26 @@ ExpectThrowsMentioning(const std::function<void()> & action, const std::string &
     EXPECT_NE(std::string(e.GetDescription()).find(word), std::string::npos) << e.GetDescription();
   }
 }
+
+/** A rotation about (1, 1, 1) by 40 degrees: not a permutation of the axes. */
+inline MatrixType
+TiltedDirection()
+{
+  const double angle = 40.0 * itk::Math::pi / 180.0;
+  const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
+  const double k = 1.0 / std::sqrt(3.0);
+  MatrixType   d;
+  d(0, 0) = t * k * k + c;
+  d(0, 1) = t * k * k - s * k;
+  d(0, 2) = t * k * k + s * k;
+  d(1, 0) = t * k * k + s * k;
+  d(1, 1) = t * k * k + c;
+  d(1, 2) = t * k * k - s * k;
+  d(2, 0) = t * k * k - s * k;
+  d(2, 1) = t * k * k + s * k;
+  d(2, 2) = t * k * k + c;
+  return d;
+}
 } // namespace ImplicitSurfaceTest
 
 #endif

@@ -18,7 +18,6 @@
 #include "itkLaplacianSmoothingQuadEdgeMeshFilter.h"
 #include "itkMeshExtractionRandomSurfaces.h"
 #include "itkMeshExtractionTestHelpers.h"
-#include "itkMeshExtractionVertexSmoothing.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkSmoothingQuadEdgeMeshFilter.h"
 #include "itkTaubinSmoothingQuadEdgeMeshFilter.h"
@@ -541,38 +540,6 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, VolumePreservationKeepsSphereVolumeWi
   EXPECT_GT(lossWithout, 0.03);
 }
 
-TEST(LaplacianSmoothingQuadEdgeMeshFilter, VolumePreservingMoveKeepsTheConeVolumeOfItsRing)
-{
-  // eq. 2.7-2.10: the cone volume sum_f v.N_f does not change when v moves.
-  const std::vector<Vec3>            ring = { MakeVec3(1, 0, 0.3),
-                                              MakeVec3(0.2, 1.1, -0.2),
-                                              MakeVec3(-1, 0.3, 0.4),
-                                              MakeVec3(-0.6, -0.9, 0.1),
-                                              MakeVec3(0.7, -0.8, -0.3) };
-  itk::MeshExtraction::VertexOneRing r;
-  r.center = MakeVec3(0.1, -0.05, 0.6);
-  r.ring = ring.data();
-  r.size = ring.size();
-  r.closed = true;
-  auto coneVolume = [&](const Vec3 & v) {
-    double sum = 0.0;
-    for (std::size_t t = 0; t < ring.size(); ++t)
-    {
-      sum += itk::MeshExtraction::Dot(v, itk::MeshExtraction::TriangleNormal(v, r.First(t), r.Second(t)));
-    }
-    return sum;
-  };
-  itk::MeshExtraction::VertexSmoothingParameters p;
-  p.volumePreservation = true;
-  for (Weights w : AllWeights)
-  {
-    const Vec3 target = itk::MeshExtraction::LaplacianTarget(w, r);
-    const Vec3 d = itk::MeshExtraction::SmoothingDisplacement(p, r, target);
-    EXPECT_GT(itk::MeshExtraction::Norm(d), 0.01) << w;
-    EXPECT_NEAR(coneVolume(r.center + d), coneVolume(r.center), 1e-12) << w;
-    EXPECT_NEAR(itk::MeshExtraction::Dot(d, itk::MeshExtraction::OneRingNormal(r)), 0.0, 1e-12) << w;
-  }
-}
 
 TEST(LaplacianSmoothingQuadEdgeMeshFilter, SmoothingMarchingCubesSphereRaisesQAreaAndStaysWithinAQuarterVoxel)
 {
@@ -609,23 +576,6 @@ TEST(LaplacianSmoothingQuadEdgeMeshFilter, SmoothingMarchingCubesSphereRaisesQAr
 // ------------------------------------------------------------------------------
 // The parts of a move.
 // ------------------------------------------------------------------------------
-TEST(LaplacianSmoothingQuadEdgeMeshFilter, EveryWeightKeepsTheCentreOfARegularPlanarRing)
-{
-  std::vector<Vec3> ring;
-  for (int i = 0; i < 6; ++i)
-  {
-    ring.push_back(MakeVec3(std::cos(i * itk::Math::pi / 3), std::sin(i * itk::Math::pi / 3), 0));
-  }
-  itk::MeshExtraction::VertexOneRing r;
-  r.center = MakeVec3(0, 0, 0);
-  r.ring = ring.data();
-  r.size = ring.size();
-  for (Weights w : AllWeights)
-  {
-    ITK_EXPECT_VECTOR_NEAR(itk::MeshExtraction::LaplacianTarget(w, r), MakeVec3(0, 0, 0), 1e-12);
-  }
-}
-
 TEST(LaplacianSmoothingQuadEdgeMeshFilter, CentroidConstraintMovesTwoThirdsOfTheLaplacianMove)
 {
   std::mt19937 rng(7);

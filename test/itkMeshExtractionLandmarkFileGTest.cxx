@@ -163,17 +163,3 @@ TEST(LandmarkFile, NamesTheFileAndTheProblem)
               std::string::npos);
   }
 }
-
-TEST(LandmarkFile, ReadsTheVertebraLandmarks)
-{
-  const std::string path =
-    std::string(MESHEXTRACTION_SOURCE_DIR) + "/../shared/data/vertebrae_L1/sub-verse010_segment_20.json";
-  if (!itksys::SystemTools::FileExists(path))
-  {
-    GTEST_SKIP() << "../shared/data/vertebrae_L1 is not present next to the project";
-  }
-  const auto l = ME::ReadLandmarkFile(path);
-  ASSERT_EQ(l.size(), 10u);
-  EXPECT_EQ(l[0].id, "A");
-  EXPECT_NEAR(l[0].point[1], 250.64239501953125, 1e-12);
-}

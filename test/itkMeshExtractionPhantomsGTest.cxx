@@ -22,10 +22,19 @@
 #include "itkSphereUnionImplicitSurface.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkImplicitSurfaceTestHelpers.h"
+#include "itkImageRegionConstIteratorWithIndex.h"
 
+#include <cmath>
 #include <sstream>
 
 using namespace ImplicitSurfaceTest;
+
+namespace
+{
+using FloatImage = itk::Image<float, 3>;
+using DoubleImage = itk::Image<double, 3>;
+using PhantomImage = itk::MeshExtractionEnums::PhantomImage;
+} // namespace
 
 TEST(MeshExtractionPhantoms, NamesRoundTripAndUnknownNamesListTheValidOnes)
 {
@@ -183,4 +192,71 @@ TEST(MeshExtractionPhantoms, InvalidGridThrows)
   grid = PhantomGrid();
   grid.size[2] = 0;
   ExpectThrowsMentioning([&] { MakePhantomSurface(PhantomShape::Sphere, grid); }, "size");
+}
+
+TEST(MeshExtractionPhantoms, DefaultPhantomImagesHaveTheGridGeometryAndNoVoxelExactlyOnTheSurface)
+{
+  using namespace itk::MeshExtraction;
+  for (const auto shape : AllPhantomShapes())
+  {
+    const PhantomGrid      grid = DefaultPhantomGrid(shape);
+    PhantomImageParameters distance = DefaultPhantomImageParameters(shape);
+    distance.mode = PhantomImage::DistanceMap;
+    auto source = MakePhantomImageSource<DoubleImage>(shape, grid, distance);
+    source->Update();
+    const DoubleImage * image = source->GetOutput();
+    EXPECT_EQ(image->GetLargestPossibleRegion().GetSize(), grid.size) << shape;
+    EXPECT_EQ(image->GetSpacing(), grid.spacing) << shape;
+    unsigned int                                        onSurface = 0, inside = 0;
+    itk::ImageRegionConstIteratorWithIndex<DoubleImage> it(image, image->GetLargestPossibleRegion());
+    for (; !it.IsAtEnd(); ++it)
+    {
+      onSurface += it.Get() == 0.0 ? 1 : 0;
+      inside += it.Get() < 0.0 ? 1 : 0;
+    }
+    EXPECT_EQ(onSurface, 0u) << shape;
+    EXPECT_GT(inside, 0u) << shape;
+    EXPECT_LT(inside, image->GetLargestPossibleRegion().GetNumberOfPixels()) << shape;
+  }
+}
+
+TEST(MeshExtractionPhantoms, Chapter4SphereDefaultImageIsABlurredStepFrom0To100)
+{
+  using namespace itk::MeshExtraction;
+  using UCharImage = itk::Image<unsigned char, 3>;
+  const auto shape = PhantomShape::Chapter4Sphere;
+  auto       source = MakePhantomImageSource<UCharImage>(shape, DefaultPhantomGrid(shape));
+  EXPECT_EQ(source->GetImageMode(), PhantomImage::BlurredStep);
+  source->Update();
+  const UCharImage * image = source->GetOutput();
+  EXPECT_EQ(image->GetLargestPossibleRegion().GetSize()[0], 100u);
+  EXPECT_EQ(image->GetPixel({ { 50, 50, 50 } }), 100);
+  EXPECT_EQ(image->GetPixel({ { 0, 0, 0 } }), 0);
+  // Voxel (74, 49, 49) is at x = 74 - 49.5 = 24.5, y = z = -0.5 from the centre:
+  // d = sqrt(24.5^2 + 0.5) - 25.
+  const double d = std::sqrt(24.5 * 24.5 + 0.5) - 25.0;
+  EXPECT_EQ(image->GetPixel({ { 74, 49, 49 } }), std::round(100.0 * 0.5 * std::erfc(d / std::sqrt(2.0))));
+}
+
+TEST(MeshExtractionPhantoms, PhantomImageDoesNotDependOnTheGridDirection)
+{
+  using namespace itk::MeshExtraction;
+  for (const auto shape : { PhantomShape::Plane, PhantomShape::Ellipsoid, PhantomShape::NarrowCleft })
+  {
+    PhantomGrid grid;
+    grid.size.Fill(24);
+    auto straight = MakePhantomImageSource<FloatImage>(shape, grid);
+    straight->Update();
+    grid.direction = TiltedDirection();
+    auto tilted = MakePhantomImageSource<FloatImage>(shape, grid);
+    tilted->Update();
+    itk::ImageRegionConstIteratorWithIndex<FloatImage> it(straight->GetOutput(),
+                                                          straight->GetOutput()->GetLargestPossibleRegion());
+    double                                             worst = 0.0;
+    for (; !it.IsAtEnd(); ++it)
+    {
+      worst = std::max(worst, std::abs(double(it.Get()) - tilted->GetOutput()->GetPixel(it.GetIndex())));
+    }
+    EXPECT_LT(worst, 1e-4) << shape;
+  }
 }

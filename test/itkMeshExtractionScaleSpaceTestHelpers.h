@@ -19,14 +19,16 @@
 #define itkMeshExtractionScaleSpaceTestHelpers_h
 
 // The images and initial meshes of the scale-space tests (thesis chapter 4), shared
-// by itkScaleSpaceEdgeDetectionMeshFilterGTest.cxx and
-// itkScaleSpaceEdgeMeshRefinementFilterGTest.cxx.
+// by the edge-detection and refinement tests, the Gaussian scale space's, the stress
+// runs and the real-data tests.
 
 #include "itkImage.h"
 #include "itkMeshExtractionGeodesicSphere.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionPhantoms.h"
+#include "itkMeshExtractionTestHelpers.h"
 #include "itkQuadEdgeMesh.h"
+#include "itkScaleSpaceEdgeMeshRefinementFilter.h"
 
 namespace MeshExtractionScaleSpaceTest
 {
@@ -34,6 +36,7 @@ namespace ME = itk::MeshExtraction;
 using ME::Vec3;
 using MeshType = itk::QuadEdgeMesh<double, 3>;
 using ImageType = itk::Image<float, 3>;
+using RefinementFilterType = itk::ScaleSpaceEdgeMeshRefinementFilter<MeshType, ImageType>;
 
 inline MeshType::Pointer
 ToMesh(const ME::IndexedTriangleMesh & m)
@@ -107,6 +110,21 @@ struct SmallSphere
     return ME::MakePerturbedGeodesicSphere(3, ME::MakeVec3(c[0], c[1], c[2]), radius, 0.2, 0.53, 100);
   }
 };
+
+/** The refinement of `input` (RandomSurfaceNetsMesh(seed)) against its own image:
+ * maximum deviation 2, at most 3 cycles; not yet updated. */
+inline RefinementFilterType::Pointer
+RandomVolumeRefinement(unsigned int seed, const MeshType * input)
+{
+  double     iso = 0.0;
+  const auto image = MeshExtractionTest::MakeRandomSmoothVolume(seed, iso);
+  auto       filter = RefinementFilterType::New();
+  filter->SetInput(input);
+  filter->SetInputImage(image);
+  filter->SetMaximumDeviation(2.0);
+  filter->SetMaximumNumberOfCycles(3);
+  return filter;
+}
 } // namespace MeshExtractionScaleSpaceTest
 
 #endif

@@ -20,6 +20,7 @@
 
 #include "itkMeshExtractionGeodesicSphere.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionPhantoms.h"
 #include "itkImage.h"
 #include "itkMacro.h"
 #include "itkMesh.h"
@@ -146,6 +147,63 @@ ToITKMesh(const IndexedTriangleMesh & in)
   return mesh;
 }
 
+
+/** `mesh` with the triangles and points of `other` appended. */
+inline void
+Append(IndexedTriangleMesh & mesh, const IndexedTriangleMesh & other)
+{
+  const auto offset = static_cast<std::uint32_t>(mesh.points.size());
+  mesh.points.insert(mesh.points.end(), other.points.begin(), other.points.end());
+  for (auto t : other.triangles)
+  {
+    for (auto & v : t)
+    {
+      v += offset;
+    }
+    mesh.triangles.push_back(t);
+  }
+}
+
+/** An image of nx x ny x nz voxels of 1 mm at the origin, filled with `value`. */
+template <typename TImage>
+typename TImage::Pointer
+MakeImage(unsigned int nx, unsigned int ny, unsigned int nz, typename TImage::PixelType value = 0)
+{
+  auto                      image = TImage::New();
+  typename TImage::SizeType size = { { nx, ny, nz } };
+  image->SetRegions(size);
+  image->Allocate();
+  image->FillBuffer(value);
+  return image;
+}
+
+/** A phantom's distance map (inside negative) and its exact surface. */
+struct Phantom
+{
+  itk::Image<float, 3>::Pointer         image;
+  itk::ImplicitSurfaceFunction::Pointer surface;
+  itk::MeshExtraction::PhantomGrid      grid;
+};
+
+/** The phantom `shape` on `grid`. */
+inline Phantom
+MakePhantom(itk::MeshExtraction::PhantomShape shape, const itk::MeshExtraction::PhantomGrid & grid)
+{
+  Phantom p;
+  p.grid = grid;
+  auto source = itk::MeshExtraction::MakePhantomImageSource<itk::Image<float, 3>>(shape, grid);
+  source->Update();
+  p.image = source->GetOutput();
+  p.surface = itk::MeshExtraction::MakePhantomSurface(shape, grid);
+  return p;
+}
+
+/** The phantom `shape` on its default grid. */
+inline Phantom
+MakePhantom(itk::MeshExtraction::PhantomShape shape)
+{
+  return MakePhantom(shape, itk::MeshExtraction::DefaultPhantomGrid(shape));
+}
 
 /** The small VTK head CT of ../shared/data/ct_headsq (64 x 64 x 93 voxels of
  * 3.2 x 3.2 x 1.5 mm, HU + 1024, bone above ~1150), read from its raw file: its NRRD

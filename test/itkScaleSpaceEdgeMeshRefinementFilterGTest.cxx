@@ -46,6 +46,7 @@ using Operation = itk::MeshExtractionEnums::RefinementOperation;
 using MeshExtractionScaleSpaceTest::Chapter4SphereCenter;
 using MeshExtractionScaleSpaceTest::Chapter4SphereImage;
 using MeshExtractionScaleSpaceTest::InitialSphere;
+using MeshExtractionScaleSpaceTest::RandomVolumeRefinement;
 using MeshExtractionScaleSpaceTest::ToMesh;
 
 /** The smaller sphere of the tests that need no Table 4.1 numbers. */
@@ -201,14 +202,15 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, AnisotropicRotatedEllipsoid)
   const auto & steps = filter->GetSteps();
   ASSERT_GE(steps.size(), 3u);
   double initialDistance = 0.0;
-  for (const double d : ME::SignedDistancesToSurface(ME::MakeIndexedTriangleMesh(*nets->GetOutput()).points, *surface))
+  for (const double d :
+       ME::detail::SignedDistancesToSurface(ME::MakeIndexedTriangleMesh(*nets->GetOutput()).points, *surface))
   {
     initialDistance += std::abs(d);
   }
   initialDistance /= static_cast<double>(nets->GetOutput()->GetNumberOfPoints());
   double     finalDistance = 0.0;
   const auto finalPoints = ME::MakeIndexedTriangleMesh(*filter->GetOutput()).points;
-  for (const double d : ME::SignedDistancesToSurface(finalPoints, *surface))
+  for (const double d : ME::detail::SignedDistancesToSurface(finalPoints, *surface))
   {
     finalDistance += std::abs(d);
   }
@@ -310,51 +312,6 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, OpenMeshesAreRefinedThroughTheQuadEdgeS
   EXPECT_GT(after.qArea.mean, before.qArea.mean);
 }
 
-// Real data, when ../shared/data is next to the project: the small VTK head CT (bone
-// above 1150, 3.2 x 3.2 x 1.5 mm voxels), from the unrelaxed SurfaceNets mesh.
-TEST(ScaleSpaceEdgeMeshRefinementFilter, RealHeadCTGetsMoreAccurateAndBetterShapedAndStaysValid)
-{
-  std::string where;
-  const auto  image = MeshExtractionTest::ReadSharedHeadCT(where);
-  if (image.IsNull())
-  {
-    GTEST_SKIP() << "../shared/data/ct_headsq is not next to the project (" << where << "): real-data test skipped";
-  }
-  using ShortImage = itk::Image<short, 3>;
-  auto net = itk::SurfaceNetsImageToMeshFilter<ShortImage, MeshType>::New();
-  net->SetInput(image);
-  net->SetIsoValue(1150);
-  net->SetRelaxation(itk::SurfaceNetsImageToMeshFilterEnums::Relaxation::None);
-  net->Update();
-  const auto before = Analyze(net->GetOutput());
-  ASSERT_TRUE(before.IsValidClosedSurface()) << Describe(before);
-
-  auto filter = itk::ScaleSpaceEdgeMeshRefinementFilter<MeshType, ShortImage>::New();
-  filter->SetInput(net->GetOutput());
-  filter->SetInputImage(image);
-  filter->SetMaximumDeviation(3.0);
-  filter->SetMaximumNumberOfCycles(2);
-  filter->Update();
-  std::vector<double> inaccuracy;
-  for (const auto & s : filter->GetSteps())
-  {
-    EXPECT_EQ(s.degenerateTriangles, 0);
-    EXPECT_EQ(s.nonManifold, 0);
-    EXPECT_LE(s.invertedTriangles, 0);
-    if (s.operation == Operation::EdgeDetection)
-    {
-      inaccuracy.push_back(s.inaccuracy);
-    }
-  }
-  ASSERT_EQ(inaccuracy.size(), 3u);
-  EXPECT_LT(inaccuracy.back(), 0.75 * inaccuracy.front()); // measured 0.687 -> 0.426 mm
-  const auto after = Analyze(filter->GetOutput());
-  EXPECT_TRUE(after.IsValidClosedSurface()) << Describe(after);
-  EXPECT_EQ(after.selfIntersectingPairs, 0);
-  EXPECT_EQ(after.eulerCharacteristic, before.eulerCharacteristic);
-  EXPECT_GT(after.qArea.mean, before.qArea.mean + 0.03);   // measured 0.714 -> 0.764
-  EXPECT_GT(after.qAngle.mean, before.qAngle.mean + 0.05); // measured 0.332 -> 0.41
-}
 
 TEST(ScaleSpaceEdgeMeshRefinementFilter, StopsAtTheCycleLimitAndReportsIt)
 {
@@ -468,23 +425,6 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, PrintSelfNamesEveryParameter)
   EXPECT_EQ(ME::RefinementOperationAbbreviation(Operation::Smoothing), "S");
 }
 
-namespace
-{
-/** The refinement of `input` (RandomSurfaceNetsMesh(seed)) against its own image:
- * maximum deviation 2, at most 3 cycles; not yet updated. */
-FilterType::Pointer
-RandomVolumeRefinement(unsigned int seed, const MeshType * input)
-{
-  double     iso = 0.0;
-  const auto image = MeshExtractionTest::MakeRandomSmoothVolume(seed, iso);
-  auto       filter = FilterType::New();
-  filter->SetInput(input);
-  filter->SetInputImage(image);
-  filter->SetMaximumDeviation(2.0);
-  filter->SetMaximumNumberOfCycles(3);
-  return filter;
-}
-} // namespace
 
 TEST(ScaleSpaceEdgeMeshRefinementFilter, RefinesSurfaceNetsMeshesOfObjectsCutByTheImageBorder)
 {
@@ -506,50 +446,4 @@ TEST(ScaleSpaceEdgeMeshRefinementFilter, RefinesSurfaceNetsMeshesOfObjectsCutByT
     EXPECT_EQ(report.connectedComponents, before.connectedComponents) << "seed " << seed;
     EXPECT_EQ(report.eulerCharacteristic, before.eulerCharacteristic) << "seed " << seed;
   }
-}
-
-// ------------------------------------------------------------------------------
-// Stress runs (not run by default: minutes): the refinement of the SurfaceNets meshes
-// of smooth random volumes (RandomSurfaceNetsMesh; many small components and pinches)
-// against their own images, every third seed. Seeds from the environment:
-//   MESHEXTRACTION_STRESS_SEEDS=0,300 build/test/MeshExtractionGTestDriver
-//     --gtest_also_run_disabled_tests --gtest_filter='StressRuns.*'
-// ------------------------------------------------------------------------------
-TEST(StressRuns, DISABLED_RefinedRandomSmoothVolumes)
-{
-  unsigned int first = 0;
-  unsigned int last = 300;
-  MeshExtractionTest::StressSeeds(first, last);
-  unsigned int runs = 0;
-  unsigned int failures = 0;
-  for (unsigned int seed = first + (3 - first % 3) % 3; seed < last; seed += 3)
-  {
-    const auto input = MeshExtractionTest::RandomSurfaceNetsMesh(seed);
-    if (!input)
-    {
-      continue;
-    }
-    const auto filter = RandomVolumeRefinement(seed, input);
-    ++runs;
-    try
-    {
-      filter->Update();
-    }
-    catch (const itk::ExceptionObject & e)
-    {
-      ++failures;
-      std::cout << "seed " << seed << ": " << e.GetDescription() << '\n';
-      continue;
-    }
-    const auto report = Analyze(filter->GetOutput());
-    if (!report.IsValidClosedSurface())
-    {
-      ++failures;
-      std::cout << "seed " << seed << ": invalid: inverted (outward) " << report.invertedTrianglesVersusOutward
-                << ", self-intersecting pairs " << report.selfIntersectingPairs << ", degenerate "
-                << report.degenerateTriangles << '\n';
-    }
-  }
-  std::cout << "refinement valid: " << failures << " failures in " << runs << '\n';
-  EXPECT_EQ(failures, 0u);
 }

@@ -183,8 +183,8 @@ TEST(ThreeLandmarkIncrementalTransformInitializer, InvariantsHoldForUnrelatedLan
     EXPECT_GT(b * axis, 0.0);
     EXPECT_NEAR(b.GetNorm(), (f[1] - f[0]).GetNorm(), 1e-9); // rigid: |AB| kept
     // C in the half-plane of C.
-    const Vector c = itk::MeshExtraction::PerpendicularPart(t->TransformPoint(f[2]) - m[0], axis);
-    const Vector target = itk::MeshExtraction::PerpendicularPart(m[2] - m[0], axis);
+    const Vector c = itk::MeshExtraction::detail::PerpendicularPart(t->TransformPoint(f[2]) - m[0], axis);
+    const Vector target = itk::MeshExtraction::detail::PerpendicularPart(m[2] - m[0], axis);
     EXPECT_LT(itk::CrossProduct(c, target).GetNorm() / target.GetNorm(), 1e-9);
     EXPECT_GT(c * target, 0.0);
   }
@@ -201,11 +201,11 @@ TEST(ThreeLandmarkIncrementalTransformInitializer, TheThesisMoveOfMovingOntoFixe
     const Landmarks m = RandomTriple(random);
     const Vector    uf = (f[1] - f[0]) / (f[1] - f[0]).GetNorm();
     const Vector    um = (m[1] - m[0]) / (m[1] - m[0]).GetNorm();
-    const auto      R1 = itk::MeshExtraction::ShortestArcRotation(um, uf);
-    const Vector    v = itk::MeshExtraction::PerpendicularPart(R1 * (m[2] - m[0]), uf);
-    const Vector    w = itk::MeshExtraction::PerpendicularPart(f[2] - f[0], uf);
-    const auto      R2 = itk::MeshExtraction::AxisAngleRotation(uf, std::atan2(uf * itk::CrossProduct(v, w), v * w));
-    auto            thesis = itk::AffineTransform<double, 3>::New();
+    const auto      R1 = itk::MeshExtraction::detail::ShortestArcRotation(um, uf);
+    const Vector    v = itk::MeshExtraction::detail::PerpendicularPart(R1 * (m[2] - m[0]), uf);
+    const Vector    w = itk::MeshExtraction::detail::PerpendicularPart(f[2] - f[0], uf);
+    const auto R2 = itk::MeshExtraction::detail::AxisAngleRotation(uf, std::atan2(uf * itk::CrossProduct(v, w), v * w));
+    auto       thesis = itk::AffineTransform<double, 3>::New();
     thesis->SetCenter(m[0]);
     thesis->SetMatrix(R2 * R1);
     thesis->SetTranslation(f[0] - m[0]);
@@ -299,7 +299,7 @@ TEST(ThreeLandmarkIncrementalTransformInitializer, DistensionRecoversKnownScalin
     const auto      rigid = RandomRigid(random);
     // Moving = A' + R S (p - A), S scaling by 1.3 along AB and 0.8 toward C.
     const Vector u = (f[1] - f[0]) / (f[1] - f[0]).GetNorm();
-    Vector       e2 = itk::MeshExtraction::PerpendicularPart(f[2] - f[0], u);
+    Vector       e2 = itk::MeshExtraction::detail::PerpendicularPart(f[2] - f[0], u);
     e2 /= e2.GetNorm();
     const Vector              e3 = itk::CrossProduct(u, e2);
     itk::Matrix<double, 3, 3> S;

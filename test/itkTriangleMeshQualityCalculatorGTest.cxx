@@ -415,8 +415,8 @@ TEST(TriangleMeshQualityCalculator, JSONReportOfAMeshWithANaNPointStaysValidJSON
   EXPECT_NE(json.find("\"valid_closed_surface\": false}"), std::string::npos) << json;
 
   std::ostringstream text;
-  text << itk::MeshExtraction::JSONString{ std::string("a\"b\\c\n") } << ' '
-       << itk::MeshExtraction::JSONNumber{ -std::numeric_limits<double>::infinity() } << ' '
-       << itk::MeshExtraction::JSONNumber{ 0.25 };
+  text << itk::MeshExtraction::detail::JSONString{ std::string("a\"b\\c\n") } << ' '
+       << itk::MeshExtraction::detail::JSONNumber{ -std::numeric_limits<double>::infinity() } << ' '
+       << itk::MeshExtraction::detail::JSONNumber{ 0.25 };
   EXPECT_EQ(text.str(), "\"a\\\"b\\\\c\\u000a\" null 0.25");
 }

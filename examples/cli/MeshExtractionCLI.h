@@ -34,10 +34,10 @@
 #include "itkImageIOBase.h"
 #include "itkImplicitSurfaceFunction.h"
 #include "itkMesh.h"
-#include "itkMeshExtractionDistanceAnalysis.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionMeshSurfaceDistanceReport.h"
 #include "itkMeshExtractionPhantoms.h"
-#include "itkMeshExtractionQualityAnalysis.h"
+#include "itkMeshExtractionTriangleMeshQualityReport.h"
 #include "itkProcessObject.h"
 #include "itkQuadEdgeMesh.h"
 

@@ -151,7 +151,7 @@ WriteJSON(const std::vector<MeasuredMesh> & meshes, const std::string & path)
   out << "[\n";
   for (std::size_t i = 0; i < meshes.size(); ++i)
   {
-    out << "  {\"mesh\": " << itk::MeshExtraction::JSONString{ meshes[i].name } << ", \"quality\": ";
+    out << "  {\"mesh\": " << itk::MeshExtraction::detail::JSONString{ meshes[i].name } << ", \"quality\": ";
     meshes[i].quality.PrintJSON(out);
     if (meshes[i].hasDistance)
     {

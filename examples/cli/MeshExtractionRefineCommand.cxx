@@ -351,11 +351,11 @@ PrintRefinement(const RefineFilterType * filter,
                 double                   refineSeconds)
 {
   const auto & steps = filter->GetSteps();
-  const double minimumScale = ME::ResolveMinimumScale(image->GetSpacing(), filter->GetMinimumScale());
+  const double minimumScale = ME::detail::ResolveMinimumScale(image->GetSpacing(), filter->GetMinimumScale());
   std::cout << "scale-space refinement (thesis 4.2.4): maximum deviation " << s.deviation << " mm, target quality "
             << s.target << ", scales "
-            << ME::ScaleSpaceScales(s.deviation, minimumScale, static_cast<unsigned int>(s.perOctave)).size() << " ("
-            << s.deviation << " .. " << minimumScale << " mm)\n";
+            << ME::detail::ScaleSpaceScales(s.deviation, minimumScale, static_cast<unsigned int>(s.perOctave)).size()
+            << " (" << s.deviation << " .. " << minimumScale << " mm)\n";
   filter->PrintSteps(std::cout, radius);
   double      edgeDetectionSeconds = 0.0;
   std::size_t edgeDetections = 0;
