@@ -95,6 +95,31 @@ BuildShapeModel(const std::vector<IndexedTriangleMesh> & meshes,
                 const ShapeModelSettings &               settings,
                 const std::function<void(double)> &      progress = {});
 
+/** "input mesh i": how errors and reports name training mesh i. */
+MeshExtraction_EXPORT std::string
+                      TrainingMeshName(std::size_t i);
+
+/** Throws unless there are at least two training meshes. */
+MeshExtraction_EXPORT void
+CheckNumberOfTrainingMeshes(std::size_t numberOfMeshes);
+
+/** The model's topology with the points of `coordinates` (3n, x y z per point). */
+MeshExtraction_EXPORT IndexedTriangleMesh
+ModelMesh(const ShapeModelBuildResult & result, const std::vector<double> & coordinates);
+
+/** mean + sum_i s_i sqrt(lambda_i) basis_i (3n); throws for more coefficients than modes. */
+MeshExtraction_EXPORT std::vector<double>
+SynthesizeInStandardDeviations(const PrincipalComponentModel & model, const std::vector<double> & standardDeviations);
+
+/** The coefficients, in standard deviations, of a shape on the model's topology after its
+ * similarity alignment to the mean; throws for a shape of another number of points. */
+MeshExtraction_EXPORT std::vector<double>
+                      ProjectInStandardDeviations(const ShapeModelBuildResult & result, const Shape & shape);
+
+/** The model in statismo's HDF5 layout, with a line on how it was built. */
+MeshExtraction_EXPORT void
+WriteShapeModel(const std::string & fileName, const ShapeModelBuildResult & result);
+
 /** Similarity3DTransform (centre at the origin) of the parameters, and back. */
 MeshExtraction_EXPORT SimilarityTransform::Pointer
                       ToSimilarityTransform(const SimilarityParameters & parameters);

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <sstream>
 
 namespace itk
 {
@@ -407,10 +408,7 @@ BuildShapeModel(const std::vector<IndexedTriangleMesh> & meshes,
                 const ShapeModelSettings &               settings,
                 const std::function<void(double)> &      progress)
 {
-  if (meshes.size() < 2)
-  {
-    itkGenericExceptionMacro("A shape model needs at least two meshes, got " << meshes.size() << '.');
-  }
+  CheckNumberOfTrainingMeshes(meshes.size());
   if (settings.maximumNumberOfPasses < 1)
   {
     itkGenericExceptionMacro("A shape model needs at least one template pass.");
@@ -426,6 +424,88 @@ BuildShapeModel(const std::vector<IndexedTriangleMesh> & meshes,
   }
   return result;
 }
+// ---- the model ---------------------------------------------------------------------------
+
+std::string
+TrainingMeshName(std::size_t i)
+{
+  return "input mesh " + std::to_string(i);
+}
+
+void
+CheckNumberOfTrainingMeshes(std::size_t numberOfMeshes)
+{
+  if (numberOfMeshes < 2)
+  {
+    itkGenericExceptionMacro("A shape model needs at least two meshes, got " << numberOfMeshes << '.');
+  }
+}
+
+IndexedTriangleMesh
+ModelMesh(const ShapeModelBuildResult & result, const std::vector<double> & coordinates)
+{
+  IndexedTriangleMesh mesh;
+  mesh.points.resize(coordinates.size() / 3);
+  for (std::size_t k = 0; k < mesh.points.size(); ++k)
+  {
+    mesh.points[k] = MakeVec3(coordinates[3 * k], coordinates[3 * k + 1], coordinates[3 * k + 2]);
+  }
+  mesh.triangles = result.triangles;
+  return mesh;
+}
+
+std::vector<double>
+SynthesizeInStandardDeviations(const PrincipalComponentModel & model, const std::vector<double> & standardDeviations)
+{
+  if (standardDeviations.size() > model.NumberOfModes())
+  {
+    itkGenericExceptionMacro(<< standardDeviations.size() << " coefficients for a model of " << model.NumberOfModes()
+                             << " modes.");
+  }
+  std::vector<double> x = model.mean;
+  for (std::size_t i = 0; i < standardDeviations.size(); ++i)
+  {
+    const double b = standardDeviations[i] * std::sqrt(model.variances[i]);
+    for (std::size_t k = 0; k < x.size(); ++k)
+    {
+      x[k] += b * model.basis[i][k];
+    }
+  }
+  return x;
+}
+
+std::vector<double>
+ProjectInStandardDeviations(const ShapeModelBuildResult & result, const Shape & shape)
+{
+  const PrincipalComponentModel & model = result.model;
+  if (3 * shape.size() != model.mean.size())
+  {
+    itkGenericExceptionMacro("The mesh to project has " << shape.size() << " points; the model's topology has "
+                                                        << model.mean.size() / 3 << '.');
+  }
+  Shape mean(shape.size());
+  for (std::size_t k = 0; k < mean.size(); ++k)
+  {
+    mean[k] = MakeVec3(model.mean[3 * k], model.mean[3 * k + 1], model.mean[3 * k + 2]);
+  }
+  std::vector<double> b = model.Project(ApplySimilarity(AlignShape(shape, mean, true), shape));
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    b[i] /= std::sqrt(model.variances[i]);
+  }
+  return b;
+}
+
+void
+WriteShapeModel(const std::string & fileName, const ShapeModelBuildResult & result)
+{
+  std::ostringstream info;
+  info << "itk::LandmarkFreeShapeModelEstimator (MeshExtraction): " << result.corresponded.size() << " meshes, pivot "
+       << result.pivot << ", " << result.templateChanges.size()
+       << " template passes, similarity Procrustes, PCA by thin SVD";
+  WriteStatismoModel(fileName, result.model, result.triangles, info.str());
+}
+
 } // namespace detail
 } // namespace MeshExtraction
 } // namespace itk
