@@ -128,6 +128,12 @@ public:
   GetNumberOfPasses() const;
   unsigned int
   GetPivotIndex() const;
+  /** Per template pass, the mean over the meshes of eq. 7.3 (E^2, mm^2) of the similarity
+   * ICP, and the RMS move of the template (mm). */
+  const std::vector<double> &
+  GetMeanSquaredDistancePerPass() const;
+  const std::vector<double> &
+  GetTemplateChangePerPass() const;
 
   /** The mean mesh, in the model's (Procrustes) frame, on the model's topology. */
   MeshPointer

@@ -114,6 +114,20 @@ LandmarkFreeShapeModelEstimator<TMesh>::GetPivotIndex() const
 }
 
 template <typename TMesh>
+const std::vector<double> &
+LandmarkFreeShapeModelEstimator<TMesh>::GetMeanSquaredDistancePerPass() const
+{
+  return this->Result().meanE2PerPass;
+}
+
+template <typename TMesh>
+const std::vector<double> &
+LandmarkFreeShapeModelEstimator<TMesh>::GetTemplateChangePerPass() const
+{
+  return this->Result().templateChanges;
+}
+
+template <typename TMesh>
 auto
 LandmarkFreeShapeModelEstimator<TMesh>::MakeModelMesh(const std::vector<double> & coordinates) const -> MeshPointer
 {
