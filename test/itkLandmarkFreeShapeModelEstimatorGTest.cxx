@@ -29,6 +29,9 @@
 #include "itkMeshExtractionShapeModelEvaluation.h"
 #include "itkQuadEdgeMesh.h"
 #include "itkSymmetricEigenAnalysis.h"
+#include "vnl/algo/vnl_svd.h"
+#include "vnl/vnl_matrix.h"
+#include "vnl/vnl_vector.h"
 
 #include <gtest/gtest.h>
 
@@ -61,11 +64,11 @@ ToMesh(const IndexedTriangleMesh & indexed)
   return mesh;
 }
 
-/** An ellipsoid with semi-axes (a, middleAxis, shortAxis), a geodesic sphere of the given
+/** An ellipsoid with semi-axes (a, b, shortAxis), a geodesic sphere of the given
  * subdivisions scaled, under a random similarity (rotation, scale 0.8 to 1.25, a
  * translation of up to 300 mm). */
 IndexedTriangleMesh
-PosedEllipsoid(double a, unsigned int subdivisions, std::mt19937_64 & random)
+PosedEllipsoid(double a, double b, unsigned int subdivisions, std::mt19937_64 & random)
 {
   IndexedTriangleMesh mesh =
     itk::MeshExtraction::MakeGeodesicSphere(subdivisions, itk::MeshExtraction::MakeVec3(0, 0, 0), 1.0);
@@ -86,7 +89,7 @@ PosedEllipsoid(double a, unsigned int subdivisions, std::mt19937_64 & random)
   const Vec3 shift = itk::MeshExtraction::MakeVec3(300 * uniform(random), 300 * uniform(random), 300 * uniform(random));
   for (Vec3 & p : mesh.points)
   {
-    const Vec3 axes = itk::MeshExtraction::MakeVec3(a * p[0], middleAxis * p[1], shortAxis * p[2]);
+    const Vec3 axes = itk::MeshExtraction::MakeVec3(a * p[0], b * p[1], shortAxis * p[2]);
     p = scale * (rotation * axes) + shift;
   }
   return mesh;
@@ -151,7 +154,7 @@ EllipsoidModel(unsigned int n = 8)
   auto                           estimator = Estimator::New();
   for (unsigned int i = 0; i < n; ++i)
   {
-    meshes.push_back(ToMesh(PosedEllipsoid(LongAxis(i, n), i % 2 == 0 ? 3 : 4, random)));
+    meshes.push_back(ToMesh(PosedEllipsoid(LongAxis(i, n), middleAxis, i % 2 == 0 ? 3 : 4, random)));
     estimator->AddInputMesh(meshes.back());
   }
   estimator->Update();
@@ -190,6 +193,93 @@ TEST(LandmarkFreeShapeModelEstimator, EllipsoidsOfOneVaryingAxisGiveOneMode)
   const auto first = estimator->Project(estimator->GetCorrespondedMesh(0));
   const auto last = estimator->Project(estimator->GetCorrespondedMesh(7));
   EXPECT_GT(std::abs(first[0] - last[0]), 2.0);
+}
+
+TEST(LandmarkFreeShapeModelEstimator, TwoIndependentAxesGiveTwoModes)
+{
+  // A 3 x 3 grid of long and middle semi-axes: the first two modes explain the population
+  // and the coefficients of every training mesh are a linear function of its two axes.
+  std::mt19937_64                random(7);
+  std::vector<MeshType::Pointer> meshes;
+  std::vector<double>            longAxes, middleAxes;
+  auto                           estimator = Estimator::New();
+  for (unsigned int i = 0; i < 9; ++i)
+  {
+    longAxes.push_back(26.0 + 4.0 * (i % 3));
+    middleAxes.push_back(18.0 + 2.0 * (i / 3));
+    meshes.push_back(ToMesh(PosedEllipsoid(longAxes.back(), middleAxes.back(), i % 2 == 0 ? 3 : 4, random)));
+    estimator->AddInputMesh(meshes.back());
+  }
+  estimator->Update();
+  ASSERT_GE(estimator->GetNumberOfModes(), 2u);
+  const auto & variances = estimator->GetVariances();
+  EXPECT_GT((variances[0] + variances[1]) / estimator->GetTotalVariance(), 0.95);
+
+  // Least squares of each coefficient on (1, long, middle): the residual is small.
+  for (unsigned int mode = 0; mode < 2; ++mode)
+  {
+    vnl_matrix<double> design(9, 3);
+    vnl_vector<double> coefficient(9);
+    for (unsigned int i = 0; i < 9; ++i)
+    {
+      design(i, 0) = 1.0;
+      design(i, 1) = longAxes[i];
+      design(i, 2) = middleAxes[i];
+      coefficient[i] = estimator->Project(estimator->GetCorrespondedMesh(i))[mode];
+    }
+    const vnl_vector<double> fit = vnl_svd<double>(design).solve(coefficient);
+    const double             residual = (design * fit - coefficient).rms();
+    EXPECT_LT(residual, 0.1 * coefficient.rms()) << "mode " << mode + 1;
+  }
+}
+
+TEST(LandmarkFreeShapeModelEstimator, TwoClustersSeparateOnModeOne)
+{
+  std::mt19937_64                random(11);
+  std::vector<MeshType::Pointer> meshes;
+  auto                           estimator = Estimator::New();
+  const double                   axes[] = { 25.0, 25.5, 26.0, 26.5, 33.0, 33.5, 34.0, 34.5 };
+  for (unsigned int i = 0; i < 8; ++i)
+  {
+    meshes.push_back(ToMesh(PosedEllipsoid(axes[i], middleAxis, i % 2 == 0 ? 3 : 4, random)));
+    estimator->AddInputMesh(meshes.back());
+  }
+  estimator->Update();
+  std::vector<double> first;
+  for (unsigned int i = 0; i < 8; ++i)
+  {
+    first.push_back(estimator->Project(estimator->GetCorrespondedMesh(i))[0]);
+  }
+  const double sign = first[0] < 0.0 ? -1.0 : 1.0;
+  for (unsigned int i = 0; i < 8; ++i)
+  {
+    EXPECT_GT((i < 4 ? sign : -sign) * first[i], 0.5) << "mesh " << i;
+  }
+}
+
+TEST(LandmarkFreeShapeModelEstimator, PointToSurfaceMatchesCloserThanPointToPoint)
+{
+  // The thesis' Table 7.1: with meshes of different resolutions, pairing points with
+  // the nearest point on the triangles leaves a smaller E^2 than pairing them with the
+  // nearest vertex.
+  double e2[2];
+  for (unsigned int k = 0; k < 2; ++k)
+  {
+    std::mt19937_64                random(5);
+    std::vector<MeshType::Pointer> meshes;
+    auto                           estimator = Estimator::New();
+    estimator->NonRigidCorrespondenceOff();
+    estimator->SetCorrespondence(k == 0 ? itk::MeshExtractionEnums::Correspondence::PointToSurface
+                                        : itk::MeshExtractionEnums::Correspondence::PointToPoint);
+    for (unsigned int i = 0; i < 6; ++i)
+    {
+      meshes.push_back(ToMesh(PosedEllipsoid(LongAxis(i, 6), middleAxis, i % 2 == 0 ? 2 : 4, random)));
+      estimator->AddInputMesh(meshes.back());
+    }
+    estimator->Update();
+    e2[k] = estimator->GetMeanSquaredDistancePerPass().back();
+  }
+  EXPECT_LT(e2[0], e2[1]);
 }
 
 TEST(LandmarkFreeShapeModelEstimator, ModelFileRoundTripAndLayout)
@@ -256,15 +346,15 @@ TEST(LandmarkFreeShapeModelEstimator, ModelFileRoundTripAndLayout)
 TEST(LandmarkFreeShapeModelEstimator, BadInputThrows)
 {
   std::mt19937_64 random(3);
-  const auto      good = ToMesh(PosedEllipsoid(30, 2, random));
+  const auto      good = ToMesh(PosedEllipsoid(30, middleAxis, 2, random));
 
   auto one = Estimator::New();
   one->AddInputMesh(good);
   EXPECT_THROW(one->Update(), itk::ExceptionObject);
 
-  IndexedTriangleMesh openIndexed = PosedEllipsoid(30, 2, random);
+  IndexedTriangleMesh openIndexed = PosedEllipsoid(30, middleAxis, 2, random);
   openIndexed.triangles.pop_back();
-  IndexedTriangleMesh nanIndexed = PosedEllipsoid(30, 2, random);
+  IndexedTriangleMesh nanIndexed = PosedEllipsoid(30, middleAxis, 2, random);
   nanIndexed.points[5][1] = std::numeric_limits<double>::quiet_NaN();
   const std::vector<std::pair<MeshType::Pointer, std::string>> cases = { { ToMesh(openIndexed), "open" },
                                                                          { MeshType::New(), "empty" },
