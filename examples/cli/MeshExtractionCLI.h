@@ -369,6 +369,8 @@ Command
 MakeQualityCommand();
 Command
 MakeReportCommand();
+Command
+MakeShapeModelCommand();
 
 } // namespace MeshExtractionCLI
 
