@@ -28,6 +28,7 @@
 #include "itkLandmarkFreeShapeModelEstimator.h"
 #include "itkMeshExtractionLandmarkFile.h"
 #include "itkMeshExtractionPLY.h"
+#include "itkMeshExtractionSelfIntersections.h"
 #include "itkMeshExtractionShapeModelBuilder.h"
 #include "itkMeshExtractionShapeModelEvaluation.h"
 #include "itkQuadEdgeMesh.h"
@@ -210,6 +211,15 @@ PrintEvaluation(const TrainingSet & set, const Estimator & estimator, unsigned i
   const auto fit = detail::MeasureSurfaceFit(corresponded, triangles, set.originals);
   std::cout << "fit (mm): corresponded to original " << fit.forward << ", original to corresponded " << fit.backward
             << '\n';
+  std::cout << "self-intersecting triangle pairs of the corresponded meshes:";
+  for (const auto & shape : corresponded)
+  {
+    itk::MeshExtraction::IndexedTriangleMesh mesh;
+    mesh.points = shape;
+    mesh.triangles = triangles;
+    std::cout << ' ' << detail::FindSelfIntersections(mesh).size();
+  }
+  std::cout << '\n';
   if (!set.allLandmarks)
   {
     std::cout << "landmark transfer: not measured (a mesh has no landmark file)\n";

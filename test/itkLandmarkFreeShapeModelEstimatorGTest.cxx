@@ -25,6 +25,7 @@
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionLandmarkFile.h"
 #include "itkMeshExtractionPLY.h"
+#include "itkMeshExtractionSelfIntersections.h"
 #include "itkMeshExtractionShapeModelBuilder.h"
 #include "itkMeshExtractionShapeModelEvaluation.h"
 #include "itkQuadEdgeMesh.h"
@@ -145,6 +146,31 @@ PrincipalExtents(const MeshType * mesh)
   return extents;
 }
 
+/** Problems of a surface: boundary or non-manifold edges, inconsistent orientation, an
+ * enclosed volume that is not positive (facing inward). 0 for a closed, 2-manifold,
+ * outward surface. */
+std::size_t
+TopologyProblems(const IndexedTriangleMesh & indexed)
+{
+  const auto topology = itk::MeshExtraction::BuildMeshTopology(indexed);
+  double     volume = 0.0;
+  for (const auto & t : indexed.triangles)
+  {
+    volume += itk::MeshExtraction::Dot(indexed.points[t[0]],
+                                       itk::MeshExtraction::Cross(indexed.points[t[1]], indexed.points[t[2]]));
+  }
+  return topology.numberOfBoundaryEdges + topology.numberOfNonManifoldEdges + topology.numberOfInconsistentEdges +
+         (volume > 0.0 ? 0 : 1);
+}
+
+/** TopologyProblems and the self-intersecting triangle pairs of a mesh the model emits. */
+std::size_t
+SurfaceProblems(const MeshType * mesh)
+{
+  const IndexedTriangleMesh indexed = itk::MeshExtraction::MakeIndexedTriangleMesh(*mesh);
+  return TopologyProblems(indexed) + itk::MeshExtraction::detail::FindSelfIntersections(indexed).size();
+}
+
 /** Eight posed ellipsoids, long axis from 26 to 34 mm, at two resolutions. */
 Estimator::Pointer
 EllipsoidModel(unsigned int n = 8)
@@ -188,6 +214,14 @@ TEST(LandmarkFreeShapeModelEstimator, EllipsoidsOfOneVaryingAxisGiveOneMode)
   const double middleChange = std::abs(plus[1] / plus[2] - minus[1] / minus[2]);
   EXPECT_GT(longChange, 0.3);
   EXPECT_LT(middleChange, 0.2 * longChange);
+
+  // The meshes the model emits are closed, 2-manifold and outward.
+  EXPECT_EQ(SurfaceProblems(estimator->GetMeanMesh()), 0u);
+  EXPECT_EQ(SurfaceProblems(estimator->Synthesize({ 2.0 })), 0u);
+  for (unsigned int i = 0; i < 8; ++i)
+  {
+    EXPECT_EQ(SurfaceProblems(estimator->GetCorrespondedMesh(i)), 0u) << "corresponded mesh " << i;
+  }
 
   // A corresponded training mesh projects onto mode 1 in order of its long axis.
   const auto first = estimator->Project(estimator->GetCorrespondedMesh(0));
@@ -419,6 +453,22 @@ TEST(LandmarkFreeShapeModelEstimator, VertebraeL1)
     corresponded.push_back(itk::MeshExtraction::MakeIndexedTriangleMesh(*estimator->GetCorrespondedMesh(i)).points);
   }
   const auto triangles = itk::MeshExtraction::MakeIndexedTriangleMesh(*estimator->GetMeanMesh()).triangles;
+
+  // Closed, 2-manifold and outward. The non-rigid stage folds the template where the
+  // vertebra is thin (a known defect, not yet fixed): the self-intersections are
+  // reported, not yet required to be none.
+  std::cout
+    << "self-intersecting triangle pairs: pivot input "
+    << detail::FindSelfIntersections(originals[estimator->GetPivotIndex()]).size() << ", mean "
+    << detail::FindSelfIntersections(itk::MeshExtraction::MakeIndexedTriangleMesh(*estimator->GetMeanMesh())).size()
+    << ", corresponded:";
+  for (unsigned int i = 0; i < meshes.size(); ++i)
+  {
+    const auto emitted = itk::MeshExtraction::MakeIndexedTriangleMesh(*estimator->GetCorrespondedMesh(i));
+    EXPECT_EQ(TopologyProblems(emitted), 0u) << "corresponded mesh " << names[i];
+    std::cout << ' ' << detail::FindSelfIntersections(emitted).size();
+  }
+  std::cout << std::endl;
 
   const auto loo = detail::LeaveOneOutGeneralization(corresponded, originals, 3);
   EXPECT_LE(loo.meanVertexToVertex, 1.8);
