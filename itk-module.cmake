@@ -22,6 +22,8 @@ itk_module(MeshExtraction
     ITKRegistrationCommon
     ITKStatistics
     ITKZLIB
+    ITKEigen3
+    ITKHDF5
   TEST_DEPENDS
     ITKTestKernel
     ITKGoogleTest

@@ -24,6 +24,7 @@
 //   meshextraction report DIR MESH... [options]      HTML report with plots and renderings
 //   meshextraction quality MESH... [options]         measure meshes
 //   meshextraction match FIXED MOVING [options]      three-landmark matching (ch. 6)
+//   meshextraction shape-model MESH... [options]     landmark-free shape model (ch. 7)
 //
 // Run `meshextraction COMMAND --help` for the options of each command.
 
@@ -45,7 +46,7 @@ std::vector<Command>
 Commands()
 {
   return { MakePhantomCommand(), MakeExtractCommand(), MakeImproveCommand(), MakeRefineCommand(),
-           MakeQualityCommand(), MakeReportCommand(),  MakeMatchCommand() };
+           MakeQualityCommand(), MakeReportCommand(),  MakeMatchCommand(),   MakeShapeModelCommand() };
 }
 void
 PrintUsage(std::ostream & os, const std::vector<Command> & commands)

@@ -80,6 +80,11 @@ struct SurfacePoint
   Vec3          point{ 0.0 };
 };
 
+/** Barycentric weights of p (a point of triangle abc) at a, b and c; a degenerate
+ * triangle gives all the weight to a. */
+MeshExtraction_EXPORT void
+BarycentricWeights(const Vec3 & p, const Vec3 & a, const Vec3 & b, const Vec3 & c, double w[3]);
+
 /** Closest points on one mesh: its vertices (a k-d tree) or its triangles (the
  * module's AABB tree). Built once; queries are thread-safe. */
 class MeshExtraction_EXPORT ClosestPointQuery
@@ -140,10 +145,28 @@ MeshExtraction_EXPORT SimilarityTransform::Pointer
                                     const Vec3 &                center,
                                     bool                        symmetricScale = false);
 
+/** Moments of a triangulated surface, weighted by area so that they do not depend on
+ * the tessellation (two meshes of one shape at different resolutions get the same):
+ * the centroid of the surface, its principal axes (the eigenvectors of the surface's
+ * second moment about the centroid, as columns, largest first, right-handed) and the
+ * mean distance of the vertices to the centroid, each vertex weighted by a third of the
+ * area of its triangles. */
+struct SurfaceMoments
+{
+  Vec3                 centroid{ 0.0 };
+  Matrix<double, 3, 3> axes;
+  double               meanDistance{ 0.0 };
+  double               area{ 0.0 };
+};
+
+MeshExtraction_EXPORT SurfaceMoments
+ComputeSurfaceMoments(const IndexedTriangleMesh & mesh);
+
 /** The initial estimates of thesis 7.2.1: centroids aligned, principal axes aligned (the
- * four right-handed sign choices), the mean distance to the centre equalised. */
+ * four right-handed sign choices), the mean distance to the centre equalised; all from
+ * the area-weighted moments. Centred at the fixed mesh's centroid. */
 MeshExtraction_EXPORT std::vector<SimilarityTransform::Pointer>
-                      PrincipalAxesCandidates(const std::vector<Vec3> & fixed, const std::vector<Vec3> & moving);
+                      PrincipalAxesCandidates(const SurfaceMoments & fixed, const SurfaceMoments & moving);
 
 struct SymmetricICPSettings
 {
@@ -153,14 +176,15 @@ struct SymmetricICPSettings
   unsigned int                        levenbergMarquardtIterations{ 10 };
   bool                                initialAlignment{ true }; ///< principal axes; else `initial`
   const SimilarityTransform *         initial{ nullptr };       ///< fixed to moving, when given
+  bool                                measureInitialE2{ true }; ///< E^2 of the start, for SymmetricICPResult
   std::function<void(double)>         progress;
 };
 
 struct SymmetricICPResult
 {
-  SimilarityTransform::Pointer fixedToMoving; ///< Q o Q
-  SimilarityTransform::Pointer half;          ///< Q
-  double                       initialE2{ 0.0 };
+  SimilarityTransform::Pointer fixedToMoving;       ///< Q o Q
+  SimilarityTransform::Pointer half;                ///< Q
+  double                       initialE2{ 0.0 };    ///< NaN unless measureInitialE2
   double                       e2{ 0.0 };           ///< thesis eq. 7.3 at the end
   double                       meanDistance{ 0.0 }; ///< mean closest-point distance, both ways, in the moving frame
   unsigned int                 iterations{ 0 };
@@ -170,7 +194,10 @@ struct SymmetricICPResult
  * A on B and of B on A (for the current Q o Q), then the Q minimising eq. 7.3 with ITK's
  * PointSetToPointSetRegistrationMethod, LevenbergMarquardtOptimizer and
  * SymmetricPairedPointSetMetric, started from the half of the least-squares fit; it stops
- * when E^2 stops improving. */
+ * when E^2 stops improving. Without a given start, each of the four principal-axes
+ * candidates is first tried by a few closed-form iterations on a random sample of
+ * vertices of each mesh with nearest-vertex pairs (cheap, and it picks the same
+ * candidate as full iterations would), and the one of least E^2 is kept. */
 MeshExtraction_EXPORT SymmetricICPResult
 RunSymmetricICP(const ClosestPointQuery &    fixed,
                 const ClosestPointQuery &    moving,

@@ -24,8 +24,10 @@
 #include "vnl/algo/vnl_svd.h"
 #include "vnl/algo/vnl_symmetric_eigensystem.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 namespace itk
 {
@@ -58,41 +60,6 @@ ToVec(const PointType & p)
   return MakeVec3(p[0], p[1], p[2]);
 }
 
-/** Barycentric weights of p (a point of triangle abc) at a, b and c. */
-void
-BarycentricWeights(const Vec3 & p, const Vec3 & a, const Vec3 & b, const Vec3 & c, double w[3])
-{
-  const Vec3   v0 = b - a;
-  const Vec3   v1 = c - a;
-  const Vec3   v2 = p - a;
-  const double d00 = Dot(v0, v0);
-  const double d01 = Dot(v0, v1);
-  const double d11 = Dot(v1, v1);
-  const double d20 = Dot(v2, v0);
-  const double d21 = Dot(v2, v1);
-  const double denominator = d00 * d11 - d01 * d01;
-  if (!(denominator > 0.0))
-  {
-    w[0] = 1.0; // a degenerate triangle: its first corner
-    w[1] = w[2] = 0.0;
-    return;
-  }
-  w[1] = (d11 * d20 - d01 * d21) / denominator;
-  w[2] = (d00 * d21 - d01 * d20) / denominator;
-  w[0] = 1.0 - w[1] - w[2];
-}
-
-Vec3
-Centroid(const std::vector<Vec3> & points)
-{
-  Vec3 sum = MakeVec3(0, 0, 0);
-  for (const Vec3 & p : points)
-  {
-    sum += p;
-  }
-  return points.empty() ? sum : sum * (1.0 / static_cast<double>(points.size()));
-}
-
 SimilarityTransform::Pointer
 MakeSimilarity(const Versor<double> & rotation, double scale, const Vec3 & offset, const Vec3 & center)
 {
@@ -118,6 +85,30 @@ OffsetOf(const SimilarityTransform & t)
 } // namespace
 
 // ---- closest points -----------------------------------------------------------------
+
+void
+BarycentricWeights(const Vec3 & p, const Vec3 & a, const Vec3 & b, const Vec3 & c, double w[3])
+{
+  const Vec3   v0 = b - a;
+  const Vec3   v1 = c - a;
+  const Vec3   v2 = p - a;
+  const double d00 = Dot(v0, v0);
+  const double d01 = Dot(v0, v1);
+  const double d11 = Dot(v1, v1);
+  const double d20 = Dot(v2, v0);
+  const double d21 = Dot(v2, v1);
+  const double denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > 0.0))
+  {
+    w[0] = 1.0; // a degenerate triangle: its first corner
+    w[1] = w[2] = 0.0;
+    return;
+  }
+  w[1] = (d11 * d20 - d01 * d21) / denominator;
+  w[2] = (d00 * d21 - d01 * d20) / denominator;
+  w[0] = 1.0 - w[1] - w[2];
+}
+
 
 struct ClosestPointQuery::VertexTree
 {
@@ -308,64 +299,81 @@ FitSimilarity(const std::vector<Vec3> &   fixed,
   return MakeSimilarity(versor, scale, offset, center);
 }
 
-namespace
+SurfaceMoments
+ComputeSurfaceMoments(const IndexedTriangleMesh & mesh)
 {
-/** Principal axes (columns, largest variance first) of points about their centroid,
- * made right-handed. */
-Matrix<double, 3, 3>
-PrincipalAxes(const std::vector<Vec3> & points, const Vec3 & centroid)
-{
-  vnl_matrix<double> covariance(3, 3, 0.0);
-  for (const Vec3 & p : points)
+  SurfaceMoments moments;
+  Vec3           weighted = MakeVec3(0, 0, 0);
+  for (const TriangleIndices & t : mesh.triangles)
   {
-    const Vec3 d = p - centroid;
+    const Vec3 & a = mesh.points[t[0]];
+    const Vec3 & b = mesh.points[t[1]];
+    const Vec3 & c = mesh.points[t[2]];
+    const double area = TriangleArea(a, b, c);
+    moments.area += area;
+    weighted += TriangleCentroid(a, b, c) * area;
+  }
+  if (!(moments.area > 0.0))
+  {
+    itkGenericExceptionMacro("The mesh's triangles have no area: it has no surface to align.");
+  }
+  moments.centroid = weighted * (1.0 / moments.area);
+  // The exact second moment of a triangle about the centroid, per unit area:
+  // (sum_k q_k q_k^T + 9 g g^T) / 12, q_k its corners and g its centroid, all relative to
+  // the centroid. A vertex's weight for the mean distance is a third of its triangles' area.
+  vnl_matrix<double>  second(3, 3, 0.0);
+  std::vector<double> vertexArea(mesh.points.size(), 0.0);
+  for (const TriangleIndices & t : mesh.triangles)
+  {
+    const Vec3   q[3] = { mesh.points[t[0]] - moments.centroid,
+                          mesh.points[t[1]] - moments.centroid,
+                          mesh.points[t[2]] - moments.centroid };
+    const Vec3   g = (q[0] + q[1] + q[2]) * (1.0 / 3.0);
+    const double area = TriangleArea(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
     for (unsigned int r = 0; r < 3; ++r)
     {
       for (unsigned int c = 0; c < 3; ++c)
       {
-        covariance(r, c) += d[r] * d[c];
+        second(r, c) += area * (q[0][r] * q[0][c] + q[1][r] * q[1][c] + q[2][r] * q[2][c] + 9.0 * g[r] * g[c]) / 12.0;
       }
     }
+    for (std::uint32_t v : t)
+    {
+      vertexArea[v] += area / 3.0;
+    }
   }
-  vnl_symmetric_eigensystem<double> eigen(covariance); // ascending eigenvalues
-  Matrix<double, 3, 3>              axes;
+  vnl_symmetric_eigensystem<double> eigen(second); // ascending eigenvalues
   for (unsigned int k = 0; k < 3; ++k)
   {
     for (unsigned int r = 0; r < 3; ++r)
     {
-      axes[r][k] = eigen.V(r, 2 - k);
+      moments.axes[r][k] = eigen.V(r, 2 - k);
     }
   }
-  if (vnl_determinant(axes.GetVnlMatrix().as_ref()) < 0.0)
+  if (vnl_determinant(moments.axes.GetVnlMatrix().as_ref()) < 0.0)
   {
     for (unsigned int r = 0; r < 3; ++r)
     {
-      axes[r][2] = -axes[r][2];
+      moments.axes[r][2] = -moments.axes[r][2];
     }
   }
-  return axes;
-}
-
-double
-MeanDistanceTo(const std::vector<Vec3> & points, const Vec3 & centroid)
-{
-  double sum = 0.0;
-  for (const Vec3 & p : points)
+  double distance = 0.0;
+  double weight = 0.0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
   {
-    sum += Norm(p - centroid);
+    distance += vertexArea[v] * Norm(mesh.points[v] - moments.centroid);
+    weight += vertexArea[v];
   }
-  return points.empty() ? 1.0 : sum / static_cast<double>(points.size());
+  moments.meanDistance = distance / weight;
+  return moments;
 }
-} // namespace
 
 std::vector<SimilarityTransform::Pointer>
-PrincipalAxesCandidates(const std::vector<Vec3> & fixed, const std::vector<Vec3> & moving)
+PrincipalAxesCandidates(const SurfaceMoments & fixed, const SurfaceMoments & moving)
 {
-  const Vec3                                cf = Centroid(fixed);
-  const Vec3                                cm = Centroid(moving);
-  const Matrix<double, 3, 3>                af = PrincipalAxes(fixed, cf);
-  const Matrix<double, 3, 3>                am = PrincipalAxes(moving, cm);
-  const double                              scale = MeanDistanceTo(moving, cm) / MeanDistanceTo(fixed, cf);
+  const Vec3 &                              cf = fixed.centroid;
+  const Vec3 &                              cm = moving.centroid;
+  const double                              scale = moving.meanDistance / fixed.meanDistance;
   const double                              signs[4][3] = { { 1, 1, 1 }, { 1, -1, -1 }, { -1, 1, -1 }, { -1, -1, 1 } };
   std::vector<SimilarityTransform::Pointer> candidates;
   for (const auto & sign : signs)
@@ -376,7 +384,7 @@ PrincipalAxesCandidates(const std::vector<Vec3> & fixed, const std::vector<Vec3>
     {
       flip[k][k] = sign[k];
     }
-    const Matrix<double, 3, 3> rotation = am * flip * Matrix<double, 3, 3>(af.GetTranspose());
+    const Matrix<double, 3, 3> rotation = moving.axes * flip * Matrix<double, 3, 3>(fixed.axes.GetTranspose());
     Versor<double>             versor;
     versor.Set(rotation);
     // T(x) = s R (x - cf) + cm.
@@ -477,6 +485,21 @@ MakePairs(const ClosestPointQuery &   A,
   return pairs;
 }
 
+/** E^2 (eq. 7.3) of the half transform Q over fixed pairs: sum w^2 |Q(f) - Q^-1(m)|^2. */
+double
+PairsE2(const Pairs & pairs, const SimilarityTransform & half)
+{
+  const auto inverse = half.GetInverseTransform();
+  double     e2 = 0.0;
+  for (std::size_t k = 0; k < pairs.fixed.size(); ++k)
+  {
+    const Vec3 forward = ToVec(half.TransformPoint(ToPoint(pairs.fixed[k])));
+    const Vec3 backward = ToVec(inverse->TransformPoint(ToPoint(pairs.moving[k])));
+    e2 += pairs.weights[k] * pairs.weights[k] * SquaredNorm(forward - backward);
+  }
+  return e2;
+}
+
 PointSetType::Pointer
 MakePointSet(const std::vector<Vec3> & points)
 {
@@ -527,27 +550,129 @@ SymmetricE2(const ClosestPointQuery &   fixed,
             const SimilarityTransform & half,
             std::size_t                 sampleLimit)
 {
-  const Pairs pairs = MakePairs(fixed, moving, *ComposeWithItself(half), sampleLimit);
-  const auto  inverse = half.GetInverseTransform();
-  double      e2 = 0.0;
-  for (std::size_t k = 0; k < pairs.fixed.size(); ++k)
-  {
-    const Vec3 forward = ToVec(half.TransformPoint(ToPoint(pairs.fixed[k])));
-    const Vec3 backward = ToVec(inverse->TransformPoint(ToPoint(pairs.moving[k])));
-    e2 += pairs.weights[k] * pairs.weights[k] * SquaredNorm(forward - backward);
-  }
-  return e2;
+  return PairsE2(MakePairs(fixed, moving, *ComposeWithItself(half), sampleLimit), half);
 }
 
 namespace
 {
-/** The start: the given transform, or the best of the principal-axes candidates. */
+/** Closed-form iterations of the start search at most (each candidate). */
+constexpr unsigned int ProbeIterations = 8;
+
+/** A random sample of a mesh's vertices (the same for the same mesh: a fixed seed) with
+ * a nearest-vertex locator: the start search's cheap stand-in for the mesh. */
+class VertexSample
+{
+public:
+  VertexSample(const std::vector<Vec3> & points, std::size_t limit, std::uint32_t seed)
+  {
+    // A partial Fisher-Yates shuffle driven by mt19937's raw output, which the standard
+    // fixes, so the sample is the same on every platform.
+    std::vector<std::uint32_t> order(points.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i)
+    {
+      order[i] = i;
+    }
+    std::mt19937      random(seed);
+    const std::size_t count = std::min(limit, points.size());
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      std::swap(order[i], order[i + random() % (points.size() - i)]);
+      m_Points.push_back(points[order[i]]);
+    }
+    m_Container = Container::New();
+    for (std::size_t k = 0; k < m_Points.size(); ++k)
+    {
+      m_Container->push_back(ToPoint(m_Points[k]));
+    }
+    m_Locator = Locator::New();
+    m_Locator->SetPoints(m_Container);
+    m_Locator->Initialize();
+  }
+
+  const std::vector<Vec3> &
+  Points() const
+  {
+    return m_Points;
+  }
+
+  Vec3
+  Nearest(const Vec3 & p) const
+  {
+    return m_Points[m_Locator->FindClosestPoint(ToPoint(p))];
+  }
+
+private:
+  using Container = VectorContainer<IdentifierType, PointType>;
+  using Locator = PointsLocator<Container>;
+  std::vector<Vec3>  m_Points;
+  Container::Pointer m_Container;
+  Locator::Pointer   m_Locator;
+};
+
+/** The pairs of eq. 7.3 between two samples for Q o Q = `full`, nearest vertices. */
+Pairs
+SamplePairs(const VertexSample & A, const VertexSample & B, const SimilarityTransform & full)
+{
+  Pairs        pairs;
+  const auto   forward = TransformPoints(A.Points(), full);
+  const auto   backward = TransformPoints(B.Points(), *full.GetInverseTransform());
+  const double wa = 1.0 / std::sqrt(static_cast<double>(A.Points().size()));
+  const double wb = 1.0 / std::sqrt(static_cast<double>(B.Points().size()));
+  for (std::size_t i = 0; i < forward.size(); ++i)
+  {
+    pairs.fixed.push_back(A.Points()[i]);
+    pairs.moving.push_back(B.Nearest(forward[i]));
+    pairs.weights.push_back(wa);
+  }
+  for (std::size_t j = 0; j < backward.size(); ++j)
+  {
+    pairs.fixed.push_back(A.Nearest(backward[j]));
+    pairs.moving.push_back(B.Points()[j]);
+    pairs.weights.push_back(wb);
+  }
+  return pairs;
+}
+
+/** A few closed-form ICP iterations on the samples from `half`, until E^2 settles:
+ * the best Q met and its E^2. */
+std::pair<SimilarityTransform::Pointer, double>
+Probe(const VertexSample & A, const VertexSample & B, SimilarityTransform::Pointer half, const Vec3 & center)
+{
+  SimilarityTransform::Pointer best = half;
+  double                       bestE2 = std::numeric_limits<double>::infinity();
+  for (unsigned int iteration = 0; iteration < ProbeIterations; ++iteration)
+  {
+    const Pairs  pairs = SamplePairs(A, B, *ComposeWithItself(*half));
+    const double e2 = PairsE2(pairs, *half);
+    if (!(e2 < bestE2 * (1.0 - 1e-5)))
+    {
+      if (e2 < bestE2)
+      {
+        best = half, bestE2 = e2;
+      }
+      break;
+    }
+    best = half, bestE2 = e2;
+    std::vector<double> squared(pairs.weights.size());
+    for (std::size_t k = 0; k < squared.size(); ++k)
+    {
+      squared[k] = pairs.weights[k] * pairs.weights[k];
+    }
+    half = HalfSimilarity(*FitSimilarity(pairs.fixed, pairs.moving, squared, center, true), center);
+  }
+  return { best, bestE2 };
+}
+
+/** The start: the given transform, or the best of the principal-axes candidates after
+ * a short probe of each on vertex samples. */
 SimilarityTransform::Pointer
 InitialHalf(const ClosestPointQuery &    A,
             const ClosestPointQuery &    B,
             const SymmetricICPSettings & settings,
-            const Vec3 &                 center)
+            const SurfaceMoments &       momentsA,
+            const SurfaceMoments &       momentsB)
 {
+  const Vec3 & center = momentsA.centroid;
   if (settings.initial != nullptr)
   {
     return HalfSimilarity(*settings.initial, center);
@@ -556,12 +681,13 @@ InitialHalf(const ClosestPointQuery &    A,
   {
     return HalfSimilarity(*SimilarityTransform::New(), center);
   }
+  const VertexSample           sampleA(A.GetMesh().points, CoarseSample, 0);
+  const VertexSample           sampleB(B.GetMesh().points, CoarseSample, 1);
   SimilarityTransform::Pointer best;
   double                       bestE2 = std::numeric_limits<double>::infinity();
-  for (const auto & candidate : PrincipalAxesCandidates(A.GetMesh().points, B.GetMesh().points))
+  for (const auto & candidate : PrincipalAxesCandidates(momentsA, momentsB))
   {
-    auto         half = HalfSimilarity(*candidate, center);
-    const double e2 = SymmetricE2(A, B, *half, CoarseSample);
+    const auto [half, e2] = Probe(sampleA, sampleB, HalfSimilarity(*candidate, center), center);
     if (e2 < bestE2)
     {
       bestE2 = e2;
@@ -600,15 +726,7 @@ Iterate(const ClosestPointQuery &   fixed,
     const double e2 = MinimizeE2(pairs, *candidate, levenbergMarquardtIterations);
     return { candidate, e2 };
   }
-  const auto inverse = candidate->GetInverseTransform();
-  double     e2 = 0.0;
-  for (std::size_t k = 0; k < pairs.fixed.size(); ++k)
-  {
-    const Vec3 forward = ToVec(candidate->TransformPoint(ToPoint(pairs.fixed[k])));
-    const Vec3 backward = ToVec(inverse->TransformPoint(ToPoint(pairs.moving[k])));
-    e2 += squared[k] * SquaredNorm(forward - backward);
-  }
-  return { candidate, e2 };
+  return { candidate, PairsE2(pairs, *candidate) };
 }
 } // namespace
 
@@ -617,10 +735,12 @@ RunSymmetricICP(const ClosestPointQuery &    fixed,
                 const ClosestPointQuery &    moving,
                 const SymmetricICPSettings & settings)
 {
-  const Vec3         center = Centroid(fixed.GetMesh().points);
-  SymmetricICPResult result;
-  result.half = InitialHalf(fixed, moving, settings, center);
-  result.initialE2 = SymmetricE2(fixed, moving, *result.half);
+  const SurfaceMoments momentsFixed = ComputeSurfaceMoments(fixed.GetMesh());
+  const Vec3 &         center = momentsFixed.centroid;
+  SymmetricICPResult   result;
+  result.half = InitialHalf(fixed, moving, settings, momentsFixed, ComputeSurfaceMoments(moving.GetMesh()));
+  result.initialE2 =
+    settings.measureInitialE2 ? SymmetricE2(fixed, moving, *result.half) : std::numeric_limits<double>::quiet_NaN();
   // Three stages, each until E^2 settles: a sample of the points with the closed-form
   // step (the half of the pairs' least-squares similarity, close to eq. 7.3's minimum),
   // all points with it, then all points with each step refined by Levenberg-Marquardt on
@@ -669,9 +789,9 @@ RunSymmetricICP(const ClosestPointQuery &    fixed,
     }
   }
   result.fixedToMoving = ComposeWithItself(*result.half);
-  const Pairs last = MakePairs(fixed, moving, *result.fixedToMoving);
+  const Pairs last = MakePairs(fixed, moving, *result.fixedToMoving, 0, &pairs);
   result.meanDistance = last.meanDistance;
-  result.e2 = SymmetricE2(fixed, moving, *result.half);
+  result.e2 = PairsE2(last, *result.half);
   return result;
 }
 } // namespace detail

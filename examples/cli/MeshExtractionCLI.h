@@ -413,6 +413,8 @@ Command
 MakeQualityCommand();
 Command
 MakeReportCommand();
+Command
+MakeShapeModelCommand();
 
 } // namespace MeshExtractionCLI
 
