@@ -94,7 +94,8 @@ def _parser():
     )
     run.add_argument("--title", default="Cohort report", help="the HTML report's title")
     model = commands.add_parser(
-        "shape-model", help="build the statistical shape model of a cohort's meshes (not yet)", add_help=True
+        "shape-model", help="the shape model of a cohort's meshes on Dask (not yet; see meshextraction shape-model)",
+        add_help=True
     )
     model.add_argument("inputs", nargs="*", metavar="MANIFEST_OR_MESHES")
     return parser
@@ -108,8 +109,9 @@ def main(argv=None):
         return 2
     if args.command == "shape-model":
         print(
-            "meshextraction-cohort shape-model: not yet: it needs the shape-model command of meshextraction "
-            "(the statistical shape model of thesis chapter 7), which is being built; nothing was done.",
+            "meshextraction-cohort shape-model: not yet on Dask (the per-mesh matching as tasks and the PCA as their "
+            "reduction); nothing was done. On one machine, `meshextraction shape-model MESH... --output MODEL.h5` "
+            "builds the model; the meshes of a run are OUTDIR/cases/*/*.vtk.",
             file=sys.stderr,
         )
         return 2

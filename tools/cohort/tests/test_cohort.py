@@ -355,7 +355,8 @@ class CommandLineTest(unittest.TestCase):
     def test_shape_model_is_not_yet(self):
         result = subprocess.run(cohort_command("shape-model", "manifest.csv"), capture_output=True, text=True)
         self.assertEqual(result.returncode, 2)
-        self.assertIn("not yet: it needs the shape-model command of meshextraction", result.stderr)
+        self.assertIn("not yet on Dask", result.stderr)
+        self.assertIn("meshextraction shape-model MESH... --output MODEL.h5", result.stderr)
 
     def test_bad_manifest(self):
         work = fresh_dir("bad-manifest")
