@@ -11,6 +11,7 @@ packages=(
   python3 invesalius-examples mricron-data
   python3-distributed time
   xvfb xauth hdf5-tools
+  clang-14 libfuzzer-14-dev libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -275,6 +275,20 @@ public:
     m_FileSize = size;
   }
 
+  /** The bytes of the file after the current position. */
+  std::size_t
+  RemainingBytes()
+  {
+    const auto position = static_cast<std::size_t>(std::max<std::streamoff>(m_In.tellg(), 0));
+    return m_FileSize - std::min(position, m_FileSize);
+  }
+
+  const std::string &
+  FileName() const
+  {
+    return m_FileName;
+  }
+
 private:
   static bool
   IsLittleEndian()
@@ -415,6 +429,19 @@ ReadFaces(ValueReader & reader, const PLYElement & element, PolygonMesh & mesh, 
 void
 SkipElement(ValueReader & reader, const PLYElement & element)
 {
+  // An element without properties holds no data, whatever its count; one with
+  // properties takes at least a byte per entry, so a count beyond the file is a lie
+  // (that would otherwise be skipped value by value for ever).
+  if (element.properties.empty())
+  {
+    return;
+  }
+  if (element.count > reader.RemainingBytes())
+  {
+    Fail(reader.FileName(),
+         "its element '" + element.name + "' declares " + std::to_string(element.count) +
+           " entries, more than the file holds");
+  }
   for (std::uint64_t e = 0; e < element.count; ++e)
   {
     for (const PLYProperty & property : element.properties)

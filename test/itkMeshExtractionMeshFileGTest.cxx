@@ -472,6 +472,23 @@ TEST(MeshFile, RefusesHeadersThatLieAboutCounts)
   EXPECT_NE(ReadError("empty.obj", "").find("it is empty"), std::string::npos);
 }
 
+TEST(MeshFile, SkipsPLYElementsItDoesNotKnowWithoutTrustingTheirCounts)
+{
+  // Found by scripts/run-fuzzers.sh: an unknown element with a huge count and no
+  // properties was skipped entry by entry, for hours. It holds no data: read the rest.
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+  const std::string data = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(
+    ME::ReadPolygonMeshFile(WriteText("empty-element.ply", header + "element note 33333333333\nend_header\n" + data))
+      .NumberOfPolygons(),
+    1u);
+  // With a property, each entry takes at least a byte: a count beyond the file is refused.
+  EXPECT_NE(ReadError("lying-element.ply", header + "element note 33333333333\nproperty uchar n\nend_header\n" + data)
+              .find("declares 33333333333 entries, more than the file holds"),
+            std::string::npos);
+}
+
 TEST(MeshFile, RefusesHostileFilesOfEveryFormat)
 {
   // Issue 32: a coordinate that is not finite, an index out of range or a count that

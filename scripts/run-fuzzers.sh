@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses (fuzz/) with clang-14, AddressSanitizer and
+# UndefinedBehaviorSanitizer in build-fuzz/, and runs each on a seed corpus:
+#   MeshFileFuzzer    the mesh-file readers (VTK legacy, VTP, PLY, STL, OBJ, OFF) and the
+#                     checks before a QuadEdgeMesh; a refusal is fine, a crash is not
+#   ExtractionFuzzer  SurfaceNets on small volumes; every emitted mesh must be valid
+#
+#   bash scripts/run-fuzzers.sh [--smoke | --runs N | --seconds S] [BUILD_DIR]
+#
+# --seconds S per fuzzer (default 60), --runs N inputs per fuzzer, or --smoke, the short
+# deterministic run of the test command (seed 1: 20,000 mesh files, 300 volumes). Findings
+# are written to BUILD_DIR/findings/ and end the script with status 1.
+# Needs Debian's clang-14, libfuzzer-14-dev and libclang-rt-14-dev.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+limit=(-max_total_time=60)
+smoke=0
+build=build-fuzz
+while [ $# -gt 0 ]; do
+  case $1 in
+    --smoke) smoke=1; shift ;;
+    --runs) limit=(-runs="$2" -seed=1); shift 2 ;;
+    --seconds) limit=(-max_total_time="$2"); shift 2 ;;
+    *) build=$1; shift ;;
+  esac
+done
+flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
+cxxflags="$flags -include $PWD/fuzz/ItkCompilerDetectionForClang.h -Wno-builtin-macro-redefined"
+CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DMESHEXTRACTION_BUILD_FUZZERS=ON -DBUILD_TESTING=OFF \
+  -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$cxxflags" > "$build-configure.log" 2>&1 ||
+  { cat "$build-configure.log"; exit 1; }
+mv "$build-configure.log" "$build/configure.log"
+cmake --build "$build" -j "$(nproc)" --target MeshFileFuzzer ExtractionFuzzer
+
+# Seeds: the test meshes in each format (the first byte chooses the reader), and a few
+# small volumes; the corpus grows in BUILD_DIR/corpus/ from run to run.
+corpus=$build/corpus
+mkdir -p "$corpus/mesh" "$corpus/extraction" "$build/findings"
+index=0
+for extension in vtk vtp ply stl obj off; do
+  for seed in test/Input/*."$extension"; do
+    [ -f "$seed" ] || continue
+    { printf "\\x$(printf %02x $index)"; cat "$seed"; } > "$corpus/mesh/seed-$extension-$(basename "$seed")"
+  done
+  index=$((index + 1))
+done
+tetrahedron_off='OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n'
+tetrahedron_ply='ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n'
+tetrahedron_stl='solid t\nfacet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid t\n'
+printf "\x05$tetrahedron_off" > "$corpus/mesh/seed-tetrahedron-off"
+printf "\x02$tetrahedron_ply" > "$corpus/mesh/seed-tetrahedron-ply"
+printf "\x03$tetrahedron_stl" > "$corpus/mesh/seed-triangle-stl"
+printf '\x04\x04\x04\x00\x80\x80\x80\x80\x80\x05\x05\x80\x80\x05\x05\x80' > "$corpus/extraction/seed-block"
+printf '\x06\x06\x06\x12\x80\x7f\x80\x7f\x00\x80\x7f\x80' > "$corpus/extraction/seed-checker-hq"
+export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+status=0
+for fuzzer in MeshFileFuzzer ExtractionFuzzer; do
+  dir=$corpus/mesh
+  [ $fuzzer = ExtractionFuzzer ] && dir=$corpus/extraction
+  if [ $smoke = 1 ]; then
+    runs=20000
+    [ $fuzzer = ExtractionFuzzer ] && runs=300
+    limit=(-runs=$runs -seed=1)
+  fi
+  echo "== $fuzzer ${limit[*]}"
+  if ! "$build/fuzz/$fuzzer" "${limit[@]}" -max_len=4096 -timeout=20 -rss_limit_mb=2048 \
+    -artifact_prefix="$build/findings/$fuzzer-" "$dir" 2>&1 | tail -n 25; then
+    status=1
+  fi
+done
+if ls "$build"/findings/* > /dev/null 2>&1; then
+  echo "run-fuzzers: findings in $build/findings/:"
+  ls "$build"/findings/
+  status=1
+fi
+exit $status
