@@ -84,6 +84,21 @@ SwapBytes(unsigned char * data, std::size_t size, std::size_t n);
 std::string
 Lower(std::string_view text);
 
+/** A binary number type of the VTK formats: its name in the file, its size in bytes,
+ * whether it is integer and signed. */
+struct DataType
+{
+  const char * name;
+  unsigned int size;
+  bool         isInteger;
+  bool         isSigned;
+};
+
+/** One binary value of `type` at `bytes`, stored little- or big-endian, as a double
+ * (integers up to 2^53 exactly). */
+double
+DecodeBinaryValue(const DataType & type, const unsigned char * bytes, bool littleEndian);
+
 /** \brief A read position in a file's bytes, for text and binary sections.
  *
  * Every read is bounded by the end of the data: a truncated file ends in a

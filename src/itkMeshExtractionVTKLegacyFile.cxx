@@ -31,15 +31,6 @@ namespace
 {
 constexpr char Format[] = "VTK legacy";
 
-/** A data type of the legacy format: its name, its size in bytes, whether it is
- * integer, signed, floating-point. */
-struct DataType
-{
-  const char * name;
-  unsigned int size;
-  bool         isInteger;
-  bool         isSigned;
-};
 
 const DataType *
 FindDataType(std::string_view name)
@@ -77,35 +68,12 @@ FindDataType(std::string_view name)
   return nullptr;
 }
 
-/** One big-endian binary value of `type` as a double (integers up to 2^53 exactly). */
+/** One big-endian binary value of `type` as a double (the legacy format's binary data
+ * are big-endian). */
 double
 DecodeBigEndian(const DataType & type, const unsigned char * bytes)
 {
-  unsigned char b[8];
-  std::memcpy(b, bytes, type.size);
-  if (IsLittleEndian())
-  {
-    std::reverse(b, b + type.size);
-  }
-  auto as = [&b](auto value) {
-    std::memcpy(&value, b, sizeof(value));
-    return static_cast<double>(value);
-  };
-  if (!type.isInteger)
-  {
-    return type.size == 4 ? as(float()) : as(double());
-  }
-  switch (type.size)
-  {
-    case 1:
-      return type.isSigned ? as(std::int8_t()) : as(std::uint8_t());
-    case 2:
-      return type.isSigned ? as(std::int16_t()) : as(std::uint16_t());
-    case 4:
-      return type.isSigned ? as(std::int32_t()) : as(std::uint32_t());
-    default:
-      return type.isSigned ? as(std::int64_t()) : as(std::uint64_t());
-  }
+  return DecodeBinaryValue(type, bytes, false);
 }
 
 /** The reader's state: the data, where it is, what it has read. */

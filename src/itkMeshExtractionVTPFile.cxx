@@ -118,13 +118,6 @@ NextTag(Cursor & cursor)
 // ------------------------------------------------------------------------------
 // Data arrays
 // ------------------------------------------------------------------------------
-struct DataType
-{
-  const char * name;
-  unsigned int size;
-  bool         isInteger;
-  bool         isSigned;
-};
 
 const DataType *
 FindDataType(const std::string & name)
@@ -333,31 +326,7 @@ ReadPayload(Cursor & cursor, const Layout & layout, ByteSource & source, std::si
 double
 DecodeValue(const DataType & type, const unsigned char * bytes, bool littleEndian)
 {
-  unsigned char b[8];
-  std::memcpy(b, bytes, type.size);
-  if (littleEndian != IsLittleEndian())
-  {
-    std::reverse(b, b + type.size);
-  }
-  auto as = [&b](auto value) {
-    std::memcpy(&value, b, sizeof(value));
-    return static_cast<double>(value);
-  };
-  if (!type.isInteger)
-  {
-    return type.size == 4 ? as(float()) : as(double());
-  }
-  switch (type.size)
-  {
-    case 1:
-      return type.isSigned ? as(std::int8_t()) : as(std::uint8_t());
-    case 2:
-      return type.isSigned ? as(std::int16_t()) : as(std::uint16_t());
-    case 4:
-      return type.isSigned ? as(std::int32_t()) : as(std::uint32_t());
-    default:
-      return type.isSigned ? as(std::int64_t()) : as(std::uint64_t());
-  }
+  return DecodeBinaryValue(type, bytes, littleEndian);
 }
 
 /** The `count` values of an array, in whichever format it is stored. */
