@@ -167,9 +167,9 @@ LeavesTheTailUnwritten(const std::string & path, unsigned char fill)
  * again with another, tells: a tail that keeps both patterns was never read. The
  * extra read costs a second pass over the file, which is what certainty costs
  * without a reader that reports it. */
-/** The bytes a NIfTI-1 file (.nii or .nii.gz) holds after its header's vox_offset,
- * read through zlib (which reads uncompressed files as they are); null if it is not
- * a NIfTI-1 single file. */
+/** The bytes a NIfTI-1 file (.nii or .nii.gz) holds after its header's vox_offset: the
+ * file's size for an uncompressed file, counted through zlib for a compressed one; null
+ * if it is not a NIfTI-1 single file. */
 std::optional<std::uint64_t>
 NiftiBytesAfterOffset(const std::string & path)
 {
@@ -190,12 +190,19 @@ NiftiBytesAfterOffset(const std::string & path)
       std::reverse(header.begin() + 108, header.begin() + 112);
     }
     std::memcpy(&voxOffset, header.data() + 108, 4);
-    std::uint64_t     total = 348;
-    std::vector<char> chunk(1 << 16);
-    int               got;
-    while ((got = gzread(file, chunk.data(), static_cast<unsigned int>(chunk.size()))) > 0)
+    std::uint64_t total = 348;
+    int           got = 0;
+    if (gzdirect(file))
     {
-      total += static_cast<std::uint64_t>(got);
+      total = itksys::SystemTools::FileLength(path);
+    }
+    else
+    {
+      std::vector<char> chunk(1 << 16);
+      while ((got = gzread(file, chunk.data(), static_cast<unsigned int>(chunk.size()))) > 0)
+      {
+        total += static_cast<std::uint64_t>(got);
+      }
     }
     if (got == 0 && voxOffset >= 348.0f)
     {
@@ -210,10 +217,13 @@ NiftiBytesAfterOffset(const std::string & path)
 void
 CheckImageDataComplete(const std::string & path)
 {
-  const std::string lower = itksys::SystemTools::LowerCase(path);
-  const bool        nifti = lower.size() > 4 && (lower.compare(lower.size() - 4, 4, ".nii") == 0 ||
-                                          (lower.size() > 7 && lower.compare(lower.size() - 7, 7, ".nii.gz") == 0));
-  if (nifti)
+  using itksys::SystemTools;
+  const std::string lower = SystemTools::LowerCase(path);
+  if (SystemTools::StringEndsWith(lower, ".nrrd") || SystemTools::StringEndsWith(lower, ".nhdr"))
+  {
+    return; // teem's reader refuses data shorter than the header says, raw or compressed
+  }
+  if (SystemTools::StringEndsWith(lower, ".nii") || SystemTools::StringEndsWith(lower, ".nii.gz"))
   {
     // The NIfTI reader copies whatever its library read over the whole buffer: count instead.
     auto io = itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
