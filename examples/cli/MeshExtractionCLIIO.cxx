@@ -528,8 +528,9 @@ PartialFileName(const std::string & path)
     .string();
 }
 
-/** Reads a written file back where the module reads its format: a disk that filled
- * up or a size limit leaves fewer points or faces than were written. */
+/** Reads a file ITK's writer wrote back where the module reads its format: ITK does not
+ * report a failed write, and a disk that filled up or a size limit leaves fewer points
+ * or faces than were written. (The module's own writers check every write.) */
 void
 RequireWrittenWhole(const ME::PolygonMesh & faces, const std::string & written)
 {
@@ -566,8 +567,8 @@ RequireWrittenWhole(const ME::PolygonMesh & faces, const std::string & written)
   }
 }
 
-/** Writes to a partial file beside `path`, reads it back, then renames it to `path`:
- * a failed write never replaces an existing file. */
+/** Writes to a partial file beside `path`, checks it, then renames it to `path`: a
+ * failed write never replaces an existing file. */
 void
 WriteFaces(const ME::PolygonMesh & faces, const std::string & path, const MeshWriteSettings & settings)
 {
@@ -584,13 +585,13 @@ WriteFaces(const ME::PolygonMesh & faces, const std::string & path, const MeshWr
     const bool vtk = ME::MeshFileFormatFromFileName(path) == ME::MeshFileFormat::VTKLegacy;
     if (IsModuleFormat(path) && (!vtk || settings.moduleWritesVTK))
     {
-      ME::WritePolygonMeshFile(partial, faces, settings.options);
+      ME::WritePolygonMeshFile(partial, faces, settings.options); // fails on a failed write
     }
     else
     {
       WriteWithITK(faces, partial);
+      RequireWrittenWhole(faces, partial);
     }
-    RequireWrittenWhole(faces, partial);
     fs::rename(partial, path, error);
     if (error)
     {
