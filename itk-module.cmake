@@ -17,6 +17,9 @@ itk_module(MeshExtraction
     ITKImageFunction
     ITKImageGrid
     ITKImageSources
+    ITKDistanceMap
+    ITKSmoothing
+    ITKImageFeature
     ITKTransform
     ITKOptimizers
     ITKRegistrationCommon

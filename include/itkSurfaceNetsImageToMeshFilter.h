@@ -246,6 +246,16 @@ public:
     return this->GetHighQualityCellDilation();
   }
 #endif
+  /** The scale (voxels, default 2) of the smooth surface the high-quality mode fits to
+   * a label image (ClassifyByLabel): the signed distance of the object's voxels, smoothed
+   * by a Gaussian of this standard deviation with its shrinkage corrected to first
+   * order (the mean curvature), so that the surface stays where the segmentation puts
+   * it; the relaxation is then SNERT toward it (central differences). Larger values
+   * round the voxel stairs off more and follow features of a few voxels less. 0: the
+   * high-quality mode only averages the label surface (SNA), as before this option,
+   * which moves every node inward on convex parts. Unused for greyscale input. */
+  itkSetMacro(LabelSurfaceSigma, double);
+  itkGetConstMacro(LabelSurfaceSigma, double);
   /** Undo relaxation where faces would cross (default on): nodes of crossing
    * faces move back toward their cell centres until the mesh is free of
    * self-intersections (see GetNumberOfNodesMovedBack). */
@@ -400,6 +410,13 @@ private:
   /** Stage 2: the net of the surface cells. */
   void
   BuildNet();
+  /** Before stage 3, in the high-quality mode on a label image (LabelSurfaceSigma > 0):
+   * the smooth surface of the label's voxels (MakeLabelSurfaceFunction) on the input's
+   * grid, computed near the surface cells; returns the relaxation toward it (Combined),
+   * or `relaxation` unchanged where there is none. */
+  RelaxationEnum
+  MakeLabelSurface(RelaxationEnum relaxation);
+
   /** Stage 3: relax the nodes (MaximumNumberOfIterations); returns their start
    * positions where stage 4 runs (else empty). `cellCache` is kept for stage 6. */
   MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>
@@ -474,6 +491,10 @@ private:
   double            m_HighQualityCellDilation{ 0.5 };
   double            m_MinimumComponentVolume{ 0.0 };
   bool              m_ResampleToIsotropicVoxels{ false };
+  double            m_LabelSurfaceSigma{ 2.0 };
+
+  using LabelSurfaceImageType = Image<float, 3>;
+  LabelSurfaceImageType::Pointer m_LabelSurface; // while GenerateData runs (MakeLabelSurface)
 
   typename InputImageType::ConstPointer m_SampledInput;      // while GenerateData runs
   typename LabelImageType::ConstPointer m_SampledLabelImage; // idem

@@ -24,6 +24,7 @@
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionQualityAnalysis.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
+#include "itkMeshExtractionLabelSurface.h"
 #include "itkMeshExtractionSurfaceNetsHighQuality.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
@@ -84,6 +85,10 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
   {
     itkExceptionMacro("MinimumComponentVolume must be a finite volume >= 0 mm^3, got " << m_MinimumComponentVolume
                                                                                        << '.');
+  }
+  if (!(m_LabelSurfaceSigma >= 0.0 && m_LabelSurfaceSigma <= 16.0))
+  {
+    itkExceptionMacro("LabelSurfaceSigma must be in [0, 16] voxels, got " << m_LabelSurfaceSigma << '.');
   }
   if (!(m_CellMargin >= 0.0 && m_CellMargin <= 0.25))
   {
@@ -246,6 +251,15 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RelaxNet(
     this->UpdateProgress(static_cast<float>(progressStart + progressSpan * fraction));
   };
 
+  if (m_LabelSurface)
+  {
+    // The label's smooth surface: its zero level, outside above, by central differences.
+    const SurfaceNetsSampler<LabelSurfaceImageType> target(m_LabelSurface.GetPointer(), 0.0, 1.0);
+    p.isoValue = 0.0;
+    p.centralDifferences = true;
+    return RelaxSurfaceNet(
+      m_Net, &target, [&target](const Vec3 & q, std::uint32_t) { return target.Gradient(q); }, p, progress, cellCache);
+  }
   const SurfaceNetsSampler<InputImageType> sampler(input, m_IsoValue, m_InsideIsAboveIsoValue ? -1.0 : 1.0);
 
   if (relaxation != RelaxationEnum::Gradient && relaxation != RelaxationEnum::Combined)
@@ -286,7 +300,8 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
   parameters.cellDilation = m_HighQualityCellDilation;
   parameters.convergedSwapFraction = m_ConvergedSwapFraction;
   parameters.roundToFloat = std::is_same<typename OutputMeshType::PointType::ValueType, float>::value;
-  const RelaxationEnum   relaxation = m_ClassifyByLabel ? RelaxationEnum::Averaging : RelaxationEnum::Combined;
+  const RelaxationEnum relaxation =
+    (m_ClassifyByLabel && !m_LabelSurface) ? RelaxationEnum::Averaging : RelaxationEnum::Combined;
   SurfaceNetsHighQuality mode(
     m_Net,
     first,
@@ -616,7 +631,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
 {
   // Every stage, including the free functions they call, runs on this filter's work units.
   const MeshExtraction::detail::ScopedNumberOfWorkUnits workUnits(this->GetNumberOfWorkUnits());
-  const RelaxationEnum                                  relaxation = this->PrepareInputs();
+  const RelaxationEnum                                  requestedRelaxation = this->PrepareInputs();
   MeshExtraction::detail::SurfaceNetsCellCache          cellCache; // the high-quality stage's cells, read once
   Faces                                                 faces;
   this->UpdateProgress(0.0f);
@@ -624,8 +639,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   this->UpdateProgress(0.2f);
   this->BuildNet(); // 2
   this->UpdateProgress(0.3f);
-  const auto initial = this->RelaxNodes(relaxation, cellCache); // 3
-  this->RemoveSelfIntersections(relaxation, initial, faces);    // 4
+  const RelaxationEnum relaxation = this->MakeLabelSurface(requestedRelaxation);
+  const auto           initial = this->RelaxNodes(relaxation, cellCache); // 3
+  this->RemoveSelfIntersections(relaxation, initial, faces);              // 4
   this->UpdateProgress(m_HighQuality ? 0.35f : 0.8f);
   this->FormFaces(faces);                      // 5
   this->RunHighQualityStage(faces, cellCache); // 6
@@ -636,7 +652,114 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
                        faces.PhysicalPoints(),
                        faces.keptPoints.empty() ? nullptr : &faces.keptPoints); // 8
   this->ReleaseResampledInputs();
+  m_LabelSurface = nullptr;
   this->UpdateProgress(1.0f);
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+auto
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::MakeLabelSurface(RelaxationEnum relaxation)
+  -> RelaxationEnum
+{
+  namespace ME = MeshExtraction;
+  using MaskType = Image<std::uint8_t, 3>;
+  m_LabelSurface = nullptr;
+  if (!m_HighQuality || !m_ClassifyByLabel || m_LabelSurfaceSigma <= 0.0 || m_Net.cells.empty() ||
+      relaxation == RelaxationEnum::None)
+  {
+    return relaxation;
+  }
+  // The mask over the surface cells' box and a margin, beyond the image as outside.
+  const std::int64_t margin = ME::detail::LabelSurfaceMargin(m_LabelSurfaceSigma);
+  std::int64_t       lower[3] = { m_Net.cells[0].x, m_Net.cells[0].y, m_Net.cells[0].z };
+  std::int64_t       upper[3] = { lower[0], lower[1], lower[2] };
+  for (const ME::SurfaceCell & c : m_Net.cells)
+  {
+    const std::int64_t at[3] = { c.x, c.y, c.z };
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      lower[d] = std::min(lower[d], at[d]);
+      upper[d] = std::max(upper[d], at[d] + 1);
+    }
+  }
+  const InputImageType *        input = this->GetSampledInput();
+  const auto                    inside = ME::detail::SurfaceNetsVoxelRange<InputPixelType>::FromLabel(m_LabelValue);
+  auto                          mask = MaskType::New();
+  typename MaskType::RegionType maskRegion;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    lower[d] -= margin;
+    upper[d] += margin;
+    maskRegion.SetIndex(d, 0);
+    maskRegion.SetSize(d, static_cast<SizeValueType>(upper[d] - lower[d] + 1));
+  }
+  mask->SetRegions(maskRegion);
+  mask->Allocate();
+  const auto             imageSize = input->GetBufferedRegion().GetSize();
+  const std::int64_t     size[3] = { static_cast<std::int64_t>(imageSize[0]),
+                                     static_cast<std::int64_t>(imageSize[1]),
+                                     static_cast<std::int64_t>(imageSize[2]) };
+  const InputPixelType * buffer = input->GetBufferPointer();
+  std::uint8_t *         m = mask->GetBufferPointer();
+  const std::int64_t     mx = upper[0] - lower[0] + 1;
+  const std::int64_t     my = upper[1] - lower[1] + 1;
+  const std::int64_t     mz = upper[2] - lower[2] + 1;
+  ME::detail::ParallelForBlocks(static_cast<std::size_t>(mz), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::int64_t k = static_cast<std::int64_t>(begin); k < static_cast<std::int64_t>(end); ++k)
+    {
+      const std::int64_t z = lower[2] + k;
+      for (std::int64_t j = 0; j < my; ++j)
+      {
+        const std::int64_t y = lower[1] + j;
+        std::uint8_t *     row = m + (k * my + j) * mx;
+        const bool         inImage = z >= 0 && z < size[2] && y >= 0 && y < size[1];
+        for (std::int64_t i = 0; i < mx; ++i)
+        {
+          const std::int64_t x = lower[0] + i;
+          row[i] = static_cast<std::uint8_t>(inImage && x >= 0 && x < size[0] &&
+                                             inside(buffer[(z * size[1] + y) * size[0] + x]));
+        }
+      }
+    }
+  });
+  auto function = LabelSurfaceImageType::New();
+  function->SetRegions(maskRegion);
+  function->Allocate();
+  ME::detail::MakeLabelSurfaceFunction(mask, m_LabelSurfaceSigma, function, this->GetNumberOfWorkUnits());
+  mask = nullptr;
+
+  // The function on the input's grid: computed values in the box, "far outside" (the
+  // margin) elsewhere, where no node reaches.
+  m_LabelSurface = LabelSurfaceImageType::New();
+  typename LabelSurfaceImageType::RegionType region;
+  region.SetSize({ { imageSize[0], imageSize[1], imageSize[2] } });
+  m_LabelSurface->SetRegions(region);
+  m_LabelSurface->Allocate();
+  const float   far = static_cast<float>(margin);
+  const float * f = function->GetBufferPointer();
+  float *       out = m_LabelSurface->GetBufferPointer();
+  ME::detail::ParallelForBlocks(
+    static_cast<std::size_t>(size[2]), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::int64_t z = static_cast<std::int64_t>(begin); z < static_cast<std::int64_t>(end); ++z)
+      {
+        for (std::int64_t y = 0; y < size[1]; ++y)
+        {
+          float * row = out + (z * size[1] + y) * size[0];
+          if (z < lower[2] || z > upper[2] || y < lower[1] || y > upper[1])
+          {
+            std::fill(row, row + size[0], far);
+            continue;
+          }
+          const float *      from = f + ((z - lower[2]) * my + (y - lower[1])) * mx;
+          const std::int64_t x0 = std::max<std::int64_t>(0, lower[0]);
+          const std::int64_t x1 = std::min<std::int64_t>(size[0] - 1, upper[0]);
+          std::fill(row, row + x0, far);
+          std::copy(from + (x0 - lower[0]), from + (x1 - lower[0]) + 1, row + x0);
+          std::fill(row + x1 + 1, row + size[0], far);
+        }
+      }
+    });
+  return RelaxationEnum::Combined;
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -835,6 +958,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "HighQualityCellDilation: " << m_HighQualityCellDilation << '\n';
   os << indent << "MinimumComponentVolume: " << m_MinimumComponentVolume << '\n';
   os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
+  os << indent << "LabelSurfaceSigma: " << m_LabelSurfaceSigma << '\n';
   os << indent << "ConvergedSwapFraction: " << m_ConvergedSwapFraction << '\n';
   os << indent << "NumberOfSwaps: " << m_NumberOfSwaps << '\n';
   os << indent << "NumberOfRoundsPerformed: " << m_NumberOfRoundsPerformed << '\n';

@@ -59,6 +59,7 @@ struct ExtractSettings
   unsigned int                    rounds{};
   double                          convergedSwaps{};
   double                          cellDilation{};
+  double                          labelSigma{};
   bool                            isotropic{};
   double                          minimumComponentVolume{};
 };
@@ -82,6 +83,7 @@ ExtractDefaults()
   s.rounds = filter->GetNumberOfHighQualityRounds();
   s.convergedSwaps = filter->GetConvergedSwapFraction();
   s.cellDilation = filter->GetHighQualityCellDilation();
+  s.labelSigma = filter->GetLabelSurfaceSigma();
   s.isotropic = filter->GetResampleToIsotropicVoxels();
   s.minimumComponentVolume = filter->GetMinimumComponentVolume();
   return s;
@@ -145,6 +147,7 @@ ConfigureFilter(TFilter * filter, const ExtractSettings & s)
   filter->SetNumberOfHighQualityRounds(s.rounds);
   filter->SetConvergedSwapFraction(s.convergedSwaps);
   filter->SetHighQualityCellDilation(s.cellDilation);
+  filter->SetLabelSurfaceSigma(s.labelSigma);
   filter->SetResampleToIsotropicVoxels(s.isotropic);
   double minimumVolume = s.minimumComponentVolume;
   if (s.minimumComponentVoxels > 0.0)
@@ -377,6 +380,7 @@ ReadMeshingOptions(const Arguments & args, ExtractSettings & s)
   s.rounds = NonNegative(args, "rounds", s.rounds);
   s.convergedSwaps = args.GetDouble("converged-swaps", s.convergedSwaps); // the filter checks the range
   s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
+  s.labelSigma = args.GetDouble("label-sigma", s.labelSigma);             // and this one
   s.isotropic = s.isotropic || args.Has("isotropic");
   s.threads = NonNegative(args, "threads", 0);
   SetDicomSeries(args.Get("series"));
@@ -547,6 +551,11 @@ MakeExtractCommand()
       "V",
       "--quality high lets a node leave its cell by up to V voxels (0 to 0.5; 0: stay in the cell)",
       DefaultText(defaults.cellDilation) },
+    { "label-sigma",
+      "V",
+      "--quality high on a label image: fit the surface to the voxels' smoothed signed distance at this scale in "
+      "voxels (0: average only, which shrinks it)",
+      DefaultText(defaults.labelSigma) },
     { "isotropic",
       "",
       "resample to cubic voxels of the smallest spacing first: better shaped, more triangles on anisotropic voxels",

@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""Label images side by side: VTK's vtkSurfaceNets3D and vtkDiscreteFlyingEdges3D (PyPI `vtk`,
+pinned in requirements.txt) against the module's SNA and high-quality mode on the same masks.
+
+  bash scripts/compare-labels.sh            (makes the venv, builds, runs this)
+  python benchmark/peers/compare-labels.py --meshextraction build/examples/meshextraction \\
+      --benchmarks build/benchmark/MeshExtractionBenchmarks [--sizes 128 256] [--out DIR]
+
+Masks: the module's sphere phantom (`phantom sphere --image-mode mask`, radius 0.3 N, 1 mm
+voxels). Every mesh is measured by one tool, `meshextraction quality`, against the exact sphere:
+q_angle, q_area, vertex error mean/max (voxels), enclosed volume against the voxel count, and
+validity (closed, 2-manifold, consistently outward, no self-intersection). Times are the
+filters' alone, median of --runs runs after a warm-up: VTK's in this process on 1 and 2 threads
+(STDThread backend), the module's from its Google Benchmark (Labels/SNA, Labels/HQ), which
+runs the same filter on the same sphere with 1 and 2 work units.
+"""
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import zlib
+
+import numpy as np
+import vtk
+from vtk.util import numpy_support
+
+
+def read_mask(path):
+    """A MetaImage mask written by `meshextraction phantom` (uchar, zlib or raw)."""
+    raw = open(path, "rb").read()
+    marker = b"ElementDataFile = LOCAL\n"
+    start = raw.index(marker) + len(marker)
+    header = raw[:start].decode()
+    data = raw[start:]
+    if "CompressedData = True" in header:
+        data = zlib.decompress(data)
+    dims = [int(v) for v in header.split("DimSize = ")[1].split("\n")[0].split()]
+    return np.frombuffer(data, np.uint8).reshape(dims[::-1])
+
+
+def vtk_image(mask):
+    image = vtk.vtkImageData()
+    image.SetDimensions(mask.shape[2], mask.shape[1], mask.shape[0])
+    image.GetPointData().SetScalars(numpy_support.numpy_to_vtk(mask.ravel(), deep=1))
+    return image
+
+
+def run_vtk(name, image, threads, runs):
+    vtk.vtkSMPTools.SetBackend("STDThread")
+    vtk.vtkSMPTools.Initialize(threads)
+    times = []
+    output = None
+    for run in range(runs + 1):
+        f = vtk.vtkSurfaceNets3D() if name == "vtkSurfaceNets3D" else vtk.vtkDiscreteFlyingEdges3D()
+        f.SetInputData(image)
+        f.SetValue(0, 1)
+        start = time.perf_counter()
+        f.Update()
+        if run > 0:  # the first run warms up
+            times.append(1000.0 * (time.perf_counter() - start))
+        output = f.GetOutput()
+    return statistics.median(times), output
+
+
+def write_vtk_mesh(polydata, path):
+    triangles = vtk.vtkTriangleFilter()  # vtkSurfaceNets3D may emit quads; the module reads triangles
+    triangles.SetInputData(polydata)
+    clean = vtk.vtkPolyData()
+    triangles.Update()
+    clean.SetPoints(triangles.GetOutput().GetPoints())
+    clean.SetPolys(triangles.GetOutput().GetPolys())  # geometry only: no cell data
+    writer = vtk.vtkPolyDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(clean)
+    writer.Write()
+
+
+def measure(tool, mesh, mask_path, voxels, workdir):
+    report = os.path.join(workdir, "quality.json")
+    subprocess.run([tool, "quality", mesh, "--phantom", "sphere", "--image", mask_path, "--json", report],
+                   check=True, capture_output=True)
+    r = json.load(open(report))[0]
+    q, d = r["quality"], r["distance"]["vertices"]
+    return {
+        "q_angle": q["q_angle"]["mean"],
+        "q_area": q["q_area"]["mean"],
+        "error_mean": d["mean"],
+        "error_max": d["max"],
+        "signed_mean": d["signed_mean"],
+        "volume_vs_voxels_percent": 100.0 * (q["enclosed_volume"] / voxels - 1.0),
+        "valid": bool(q["valid_closed_surface"]),
+        "inconsistent_edges": q.get("inconsistently_oriented_edges", 0),
+    }
+
+
+def module_times(benchmarks, sizes):
+    """Filter times (ms) of Labels/SNA and Labels/HQ by (method, size, threads)."""
+    pattern = "Labels/(SNA|HQ)/size:(" + "|".join(str(n) for n in sizes) + ")/"
+    out = subprocess.run([benchmarks, "--benchmark_filter=" + pattern, "--benchmark_format=json"],
+                         check=True, capture_output=True, text=True).stdout
+    times = {}
+    for b in json.loads(out)["benchmarks"]:
+        parts = dict(p.split(":") for p in b["name"].split("/")[2:] if ":" in p)
+        method = b["name"].split("/")[1]
+        times[(method, int(parts["size"]), int(parts["threads"]))] = b["real_time"]
+    return times
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--meshextraction", required=True)
+    parser.add_argument("--benchmarks", required=True, help="MeshExtractionBenchmarks executable")
+    parser.add_argument("--sizes", type=int, nargs="+", default=[128, 256])
+    parser.add_argument("--runs", type=int, default=10)
+    parser.add_argument("--out", default=None, help="folder for the masks, meshes and results.json")
+    args = parser.parse_args()
+    workdir = args.out or tempfile.mkdtemp(prefix="meshextraction-labels-")
+    os.makedirs(workdir, exist_ok=True)
+    tool = args.meshextraction
+    times = module_times(args.benchmarks, args.sizes)
+    rows = []
+    for n in args.sizes:
+        mask_path = os.path.join(workdir, f"sphere{n}.mha")
+        subprocess.run([tool, "phantom", "sphere", mask_path, "--size", str(n), "--image-mode", "mask"],
+                       check=True, capture_output=True)
+        mask = read_mask(mask_path)
+        voxels = float(mask.sum())
+        image = vtk_image(mask)
+        for name in ("vtkSurfaceNets3D", "vtkDiscreteFlyingEdges3D"):
+            t1, output = run_vtk(name, image, 1, args.runs)
+            t2, _ = run_vtk(name, image, 2, args.runs)
+            mesh = os.path.join(workdir, f"{name}-{n}.vtk")
+            write_vtk_mesh(output, mesh)
+            rows.append(dict(size=n, method=name + " (VTK " + vtk.vtkVersion.GetVTKVersion() + ")",
+                             ms_1=t1, ms_2=t2, **measure(tool, mesh, mask_path, voxels, workdir)))
+        for method, options in (("SNA", []), ("HQ", ["--quality", "high"])):
+            mesh = os.path.join(workdir, f"module-{method}-{n}.vtk")
+            subprocess.run([tool, "extract", mask_path, mesh, "--label", "1"] + options,
+                           check=True, capture_output=True)
+            rows.append(dict(size=n, method="module " + ("SNA on labels" if method == "SNA" else "--quality high"),
+                             ms_1=times.get((method, n, 1), float("nan")),
+                             ms_2=times.get((method, n, 2), float("nan")),
+                             **measure(tool, mesh, mask_path, voxels, workdir)))
+    print("| N | method | q_angle | q_area | vertex error mean / max (voxels) | signed | volume vs voxels |"
+          " valid, outward | ms 1 thread / 2 | speed-up |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        valid = "yes" if r["valid"] else f"no ({r['inconsistent_edges']} inconsistent edges)"
+        print(f"| {r['size']} | {r['method']} | {r['q_angle']:.3f} | {r['q_area']:.3f} | "
+              f"{r['error_mean']:.3f} / {r['error_max']:.3f} | {r['signed_mean']:+.3f} | "
+              f"{r['volume_vs_voxels_percent']:+.2f} % | {valid} | {r['ms_1']:.1f} / {r['ms_2']:.1f} | "
+              f"{r['ms_1'] / r['ms_2']:.2f}x |")
+    json.dump(rows, open(os.path.join(workdir, "results.json"), "w"), indent=1)
+    print(f"\nmeshes and results.json in {workdir}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
