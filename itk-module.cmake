@@ -17,9 +17,6 @@ itk_module(MeshExtraction
     ITKImageFunction
     ITKImageGrid
     ITKImageSources
-    ITKDistanceMap
-    ITKSmoothing
-    ITKImageFeature
     ITKTransform
     ITKOptimizers
     ITKRegistrationCommon

@@ -36,18 +36,21 @@ namespace detail
  *
  * The object's boundary in a mask is the staircase of voxel faces between inside and
  * outside voxels. Its signed distance at the voxel centres (index units, negative
- * inside: SignedMaurerDistanceMapImageFilter, whose boundary voxels are at 0, less half
- * a voxel) is smoothed by a Gaussian of `sigma` voxels, which rounds the stairs off.
- * Smoothing a signed distance moves its zero level inward by sigma^2/2 times its
- * Laplacian (the sum of the principal curvatures): that first-order shift is added
- * back, from the Laplacian of the same Gaussian, so that convex and thin parts do not
- * shrink:  f = G * phi - sigma^2/2 * Laplacian(G * phi).
+ * inside: half a voxel less than the exact Euclidean distance from an inside voxel to
+ * the nearest outside one, or from an outside voxel to the nearest inside one) is
+ * smoothed by a Gaussian of `sigma` voxels, which rounds the stairs off. Smoothing a
+ * signed distance moves its zero level inward by sigma^2/2 times its Laplacian (the
+ * sum of the principal curvatures): that first-order shift is added back, from the
+ * Laplacian of the same Gaussian, so that convex and thin parts do not shrink:
+ * f = G * phi - sigma^2/2 * Laplacian(G * phi). Where f contradicts the mask at a voxel
+ * centre (parts thinner than the Gaussian), that voxel and its neighbours keep phi.
  *
  * `mask` holds 1 inside and 0 outside over a region that extends some voxels beyond
  * the object (and beyond the image, as outside: the net closes objects at the image
  * border half a voxel beyond it, and so does f); `function` gets f on the mask's grid
- * (spacing 1, index space). Multithreaded through ITK's filters, on `numberOfWorkUnits`
- * (0: ITK's default). */
+ * (index space). Separable passes (distance transforms, then the Gaussian and its
+ * second derivative along each axis), each in parallel on `numberOfWorkUnits` (0: the
+ * calling thread's ParallelForBlocks default). */
 MeshExtraction_EXPORT void
 MakeLabelSurfaceFunction(const Image<std::uint8_t, 3> * mask,
                          double                         sigma,

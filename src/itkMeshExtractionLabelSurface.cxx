@@ -17,13 +17,12 @@
  *=========================================================================*/
 #include "itkMeshExtractionLabelSurface.h"
 
-#include "itkImageRegionConstIterator.h"
-#include "itkImageRegionIterator.h"
-#include "itkLaplacianRecursiveGaussianImageFilter.h"
-#include "itkSignedMaurerDistanceMapImageFilter.h"
-#include "itkSmoothingRecursiveGaussianImageFilter.h"
+#include "itkMeshExtractionBuffer.h"
+#include "itkMeshExtractionParallel.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace itk
@@ -32,16 +31,220 @@ namespace MeshExtraction
 {
 namespace detail
 {
-std::int64_t
-LabelSurfaceMargin(double sigma)
-{
-  // Four standard deviations of the Gaussian, the central differences of the
-  // relaxation (one voxel) and a node up to half a voxel outside its cell.
-  return static_cast<std::int64_t>(std::ceil(4.0 * sigma)) + 3;
-}
-
 namespace
 {
+/** The grid of a mask's region: sizes and strides, the voxels in x-fastest order. */
+struct Grid
+{
+  std::int64_t n[3];
+  std::int64_t stride[3];
+  std::size_t  count;
+
+  explicit Grid(const Image<std::uint8_t, 3> * mask)
+  {
+    const auto size = mask->GetBufferedRegion().GetSize();
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      n[d] = static_cast<std::int64_t>(size[d]);
+    }
+    stride[0] = 1;
+    stride[1] = n[0];
+    stride[2] = n[0] * n[1];
+    count = static_cast<std::size_t>(n[0] * n[1] * n[2]);
+  }
+};
+
+constexpr float Far = std::numeric_limits<float>::max();
+
+/** The 1-D squared distance transform of sampled function f (Felzenszwalb and
+ * Huttenlocher's lower envelope of parabolas): d[q] = min_p (q - p)^2 + f[p], Far
+ * where every f is Far. `v` and `z` are scratch of n and n + 1 entries. */
+void
+SquaredDistance1D(const float * f, float * d, std::int64_t n, std::vector<std::int64_t> & v, std::vector<double> & z)
+{
+  std::int64_t k = -1;
+  for (std::int64_t q = 0; q < n; ++q)
+  {
+    if (f[q] >= Far)
+    {
+      continue;
+    }
+    if (k < 0)
+    {
+      k = 0;
+      v[0] = q;
+      z[0] = -std::numeric_limits<double>::infinity();
+      z[1] = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    double s = 0.0;
+    for (;;)
+    {
+      const std::int64_t p = v[k];
+      s =
+        ((f[q] + static_cast<double>(q * q)) - (f[p] + static_cast<double>(p * p))) / static_cast<double>(2 * (q - p));
+      if (s > z[k])
+      {
+        break;
+      }
+      --k; // z[0] is -infinity: k stays >= 0
+    }
+    ++k;
+    v[k] = q;
+    z[k] = s;
+    z[k + 1] = std::numeric_limits<double>::infinity();
+  }
+  if (k < 0)
+  {
+    std::fill(d, d + n, Far);
+    return;
+  }
+  k = 0;
+  for (std::int64_t q = 0; q < n; ++q)
+  {
+    while (z[k + 1] < static_cast<double>(q))
+    {
+      ++k;
+    }
+    const std::int64_t p = v[k];
+    d[q] = static_cast<float>(static_cast<double>((q - p) * (q - p)) + f[p]);
+  }
+}
+
+/** Squared distances (voxels) of every voxel to the nearest voxel whose mask value is
+ * `feature`, in place in `d`: one pass of SquaredDistance1D per axis, the lines of
+ * each pass in parallel. */
+void
+SquaredDistanceToFeature(const Grid & g, const std::uint8_t * mask, std::uint8_t feature, float * d)
+{
+  for (std::size_t i = 0; i < g.count; ++i)
+  {
+    d[i] = mask[i] == feature ? 0.0f : Far;
+  }
+  for (unsigned int axis = 0; axis < 3; ++axis)
+  {
+    const unsigned int a = (axis + 1) % 3;
+    const unsigned int b = (axis + 2) % 3;
+    const std::int64_t n = g.n[axis];
+    const std::int64_t lines = g.n[a] * g.n[b];
+    ParallelForBlocks(static_cast<std::size_t>(lines), 256, [&](std::size_t begin, std::size_t end, std::size_t) {
+      std::vector<float>        in(n);
+      std::vector<float>        out(n);
+      std::vector<std::int64_t> v(n);
+      std::vector<double>       z(n + 1);
+      for (std::size_t line = begin; line < end; ++line)
+      {
+        const std::int64_t ia = static_cast<std::int64_t>(line) % g.n[a];
+        const std::int64_t ib = static_cast<std::int64_t>(line) / g.n[a];
+        float *            base = d + ia * g.stride[a] + ib * g.stride[b];
+        for (std::int64_t q = 0; q < n; ++q)
+        {
+          in[q] = base[q * g.stride[axis]];
+        }
+        SquaredDistance1D(in.data(), out.data(), n, v, z);
+        for (std::int64_t q = 0; q < n; ++q)
+        {
+          base[q * g.stride[axis]] = out[q];
+        }
+      }
+    });
+  }
+}
+
+/** The sampled Gaussian of `sigma` voxels (sum 1) and its second derivative (sum 0,
+ * second moment 2: exact on quadratics), over [-radius, radius]. */
+void
+GaussianKernels(double sigma, std::int64_t radius, std::vector<float> & smooth, std::vector<float> & second)
+{
+  std::vector<double> g(2 * radius + 1);
+  std::vector<double> h(2 * radius + 1);
+  double              sum = 0.0;
+  for (std::int64_t k = -radius; k <= radius; ++k)
+  {
+    g[k + radius] = std::exp(-0.5 * static_cast<double>(k * k) / (sigma * sigma));
+    sum += g[k + radius];
+  }
+  double mean = 0.0;
+  for (std::int64_t k = -radius; k <= radius; ++k)
+  {
+    g[k + radius] /= sum;
+    h[k + radius] = g[k + radius] * (static_cast<double>(k * k) / (sigma * sigma) - 1.0) / (sigma * sigma);
+    mean += h[k + radius];
+  }
+  mean /= static_cast<double>(h.size());
+  double moment = 0.0;
+  for (std::int64_t k = -radius; k <= radius; ++k)
+  {
+    h[k + radius] -= mean;
+    moment += static_cast<double>(k * k) * h[k + radius];
+  }
+  smooth.assign(g.begin(), g.end());
+  second.resize(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i)
+  {
+    second[i] = static_cast<float>(2.0 * h[i] / moment);
+  }
+}
+
+/** out = kernel (along `axis`) * in, for any number of kernels at once (each with its
+ * own input and output), the image's border voxels repeated beyond it. Whole rows at a
+ * time, in parallel over the slices. */
+struct Convolution
+{
+  const float * in;
+  float *       out;
+  const float * kernel;
+};
+
+void
+Convolve(const Grid & g, unsigned int axis, std::int64_t radius, const std::vector<Convolution> & convolutions)
+{
+  const std::int64_t nx = g.n[0];
+  ParallelForBlocks(static_cast<std::size_t>(g.n[2]), 1, [&](std::size_t begin, std::size_t end, std::size_t) {
+    std::vector<float> padded(nx + 2 * radius);
+    for (std::int64_t z = static_cast<std::int64_t>(begin); z < static_cast<std::int64_t>(end); ++z)
+    {
+      for (std::int64_t y = 0; y < g.n[1]; ++y)
+      {
+        const std::int64_t row = z * g.stride[2] + y * g.stride[1];
+        for (const Convolution & c : convolutions)
+        {
+          float * out = c.out + row;
+          if (axis == 0)
+          {
+            const float * in = c.in + row;
+            std::fill(padded.begin(), padded.begin() + radius, in[0]);
+            std::copy(in, in + nx, padded.begin() + radius);
+            std::fill(padded.begin() + radius + nx, padded.end(), in[nx - 1]);
+            for (std::int64_t x = 0; x < nx; ++x)
+            {
+              float sum = 0.0f;
+              for (std::int64_t k = 0; k <= 2 * radius; ++k)
+              {
+                sum += c.kernel[k] * padded[x + k];
+              }
+              out[x] = sum;
+            }
+            continue;
+          }
+          const std::int64_t at = axis == 1 ? y : z;
+          std::fill(out, out + nx, 0.0f);
+          for (std::int64_t k = -radius; k <= radius; ++k)
+          {
+            const std::int64_t source = std::clamp<std::int64_t>(at + k, 0, g.n[axis] - 1);
+            const float *      in = c.in + row + (source - at) * g.stride[axis];
+            const float        w = c.kernel[k + radius];
+            for (std::int64_t x = 0; x < nx; ++x)
+            {
+              out[x] += w * in[x];
+            }
+          }
+        }
+      }
+    }
+  });
+}
+
 /** Where the smooth function contradicts the mask at a voxel centre (an inside voxel at
  * or above 0, an outside one below), and at the six neighbours of such a voxel, the
  * function becomes the unsmoothed signed distance `phi` again. On parts thinner than
@@ -50,21 +253,16 @@ namespace
  * is kept instead. Elsewhere the smooth surface crosses a voxel centre only now and
  * then, where it rounds a stair off, and those few voxels keep the staircase. */
 void
-KeepThinPartsOfTheMask(const Image<std::uint8_t, 3> * mask, const Image<float, 3> * phi, Image<float, 3> * function)
+KeepThinPartsOfTheMask(const Grid & g, const std::uint8_t * m, const float * p, float * f)
 {
-  const auto                size = mask->GetBufferedRegion().GetSize();
-  const std::int64_t        nx = static_cast<std::int64_t>(size[0]);
-  const std::int64_t        ny = static_cast<std::int64_t>(size[1]);
-  const std::int64_t        nz = static_cast<std::int64_t>(size[2]);
-  const std::uint8_t *      m = mask->GetBufferPointer();
-  const float *             p = phi->GetBufferPointer();
-  float *                   f = function->GetBufferPointer();
-  const std::size_t         n = static_cast<std::size_t>(nx * ny * nz);
-  std::vector<std::uint8_t> contradicts(n);
-  for (std::size_t i = 0; i < n; ++i)
+  std::vector<std::uint8_t> contradicts(g.count);
+  for (std::size_t i = 0; i < g.count; ++i)
   {
     contradicts[i] = static_cast<std::uint8_t>(m[i] != 0 ? f[i] >= 0.0f : f[i] < 0.0f);
   }
+  const std::int64_t nx = g.n[0];
+  const std::int64_t ny = g.n[1];
+  const std::int64_t nz = g.n[2];
   for (std::int64_t z = 0; z < nz; ++z)
   {
     for (std::int64_t y = 0; y < ny; ++y)
@@ -85,86 +283,67 @@ KeepThinPartsOfTheMask(const Image<std::uint8_t, 3> * mask, const Image<float, 3
 }
 } // namespace
 
+std::int64_t
+LabelSurfaceMargin(double sigma)
+{
+  // Four standard deviations of the Gaussian, the central differences of the
+  // relaxation (one voxel) and a node up to half a voxel outside its cell.
+  return static_cast<std::int64_t>(std::ceil(4.0 * sigma)) + 3;
+}
+
 void
 MakeLabelSurfaceFunction(const Image<std::uint8_t, 3> * mask,
                          double                         sigma,
                          Image<float, 3> *              function,
                          unsigned int                   numberOfWorkUnits)
 {
-  using MaskType = Image<std::uint8_t, 3>;
-  using FloatImageType = Image<float, 3>;
-  // Distances between voxel centres: of an outside voxel to the nearest inside one (the
-  // mask's map) and of an inside voxel to the nearest outside one (the complement's
-  // map). SignedMaurerDistanceMapImageFilter measures to the object's contour voxels,
-  // which are the nearest voxels of the object, so each map is right on the side
-  // where it is read; one map alone puts inside voxels that touch the outside only
-  // diagonally at distance 0 and the surface too far in.
-  auto distanceTo = [numberOfWorkUnits](const MaskType * object) {
-    auto distance = SignedMaurerDistanceMapImageFilter<MaskType, FloatImageType>::New();
-    distance->SetInput(object);
-    distance->SetBackgroundValue(0);
-    distance->SetInsideIsPositive(false);
-    distance->SetSquaredDistance(false);
-    distance->SetUseImageSpacing(false);
-    if (numberOfWorkUnits > 0)
-    {
-      distance->SetNumberOfWorkUnits(numberOfWorkUnits);
-    }
-    distance->Update();
-    FloatImageType::Pointer map = distance->GetOutput();
-    map->DisconnectPipeline();
-    return map;
-  };
-  auto complement = MaskType::New();
-  complement->CopyInformation(mask);
-  complement->SetRegions(mask->GetBufferedRegion());
-  complement->Allocate();
-  const std::size_t    n = mask->GetBufferedRegion().GetNumberOfPixels();
-  const std::uint8_t * in = mask->GetBufferPointer();
-  std::uint8_t *       out = complement->GetBufferPointer();
-  for (std::size_t i = 0; i < n; ++i)
+  const ScopedNumberOfWorkUnits workUnits(numberOfWorkUnits > 0 ? numberOfWorkUnits : ThreadNumberOfWorkUnits());
+  const Grid                    g(mask);
+  const std::uint8_t *          m = mask->GetBufferPointer();
+  // phi, the signed distance to the voxel faces between inside and outside (half a
+  // voxel from the centres), negative inside: from the distances between voxel centres
+  // of an inside voxel to the nearest outside one and of an outside voxel to the
+  // nearest inside one (exact Euclidean distance transforms).
+  // Five region-sized scratch arrays, reused from pass to pass: fresh memory costs the
+  // system's page clearing on first touch.
+  UninitializedArray<float> phi(g.count);
+  UninitializedArray<float> t1(g.count);
+  UninitializedArray<float> t2(g.count);
+  UninitializedArray<float> t3(g.count);
+  UninitializedArray<float> t4(g.count);
+  SquaredDistanceToFeature(g, m, 0, phi.data());
+  SquaredDistanceToFeature(g, m, 1, t1.data());
+  for (std::size_t i = 0; i < g.count; ++i)
   {
-    out[i] = static_cast<std::uint8_t>(in[i] == 0);
+    phi[i] = m[i] != 0 ? 0.5f - std::sqrt(phi[i]) : std::sqrt(t1[i]) - 0.5f;
   }
-  FloatImageType::Pointer phi = distanceTo(mask);
+  // f = G * phi - sigma^2 / 2 * Laplacian(G * phi), separably: along x the Gaussian (A,
+  // in t1) and its second derivative (B, t2); along y, AA = G A (t3) and
+  // E = AA - c (G'' A + G B) (t4, with G'' A in f meanwhile); along z,
+  // f = G E - c G'' AA (G'' AA in t1).
+  const std::int64_t radius = static_cast<std::int64_t>(std::ceil(4.0 * sigma));
+  std::vector<float> smooth;
+  std::vector<float> second;
+  GaussianKernels(sigma, radius, smooth, second);
+  const float c = static_cast<float>(0.5 * sigma * sigma);
+  float *     f = function->GetBufferPointer();
+  Convolve(g, 0, radius, { { phi.data(), t1.data(), smooth.data() }, { phi.data(), t2.data(), second.data() } });
+  Convolve(g,
+           1,
+           radius,
+           { { t1.data(), t3.data(), smooth.data() },
+             { t1.data(), f, second.data() },
+             { t2.data(), t4.data(), smooth.data() } });
+  for (std::size_t i = 0; i < g.count; ++i)
   {
-    const FloatImageType::Pointer toOutside = distanceTo(complement);
-    complement = nullptr;
-    // phi: the signed distance to the voxel faces between inside and outside, which
-    // lie half a voxel from the centres, negative inside.
-    float *       p = phi->GetBufferPointer();
-    const float * o = toOutside->GetBufferPointer();
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      p[i] = in[i] != 0 ? 0.5f - o[i] : p[i] - 0.5f;
-    }
+    t4[i] = t3[i] - c * (f[i] + t4[i]);
   }
-
-  auto smooth = SmoothingRecursiveGaussianImageFilter<FloatImageType, FloatImageType>::New();
-  smooth->SetInput(phi);
-  smooth->SetSigma(sigma);
-  smooth->SetNormalizeAcrossScale(false);
-  auto laplacian = LaplacianRecursiveGaussianImageFilter<FloatImageType, FloatImageType>::New();
-  laplacian->SetInput(phi);
-  laplacian->SetSigma(sigma);
-  laplacian->SetNormalizeAcrossScale(false);
-  if (numberOfWorkUnits > 0)
+  Convolve(g, 2, radius, { { t4.data(), f, smooth.data() }, { t3.data(), t1.data(), second.data() } });
+  for (std::size_t i = 0; i < g.count; ++i)
   {
-    smooth->SetNumberOfWorkUnits(numberOfWorkUnits);
-    laplacian->SetNumberOfWorkUnits(numberOfWorkUnits);
+    f[i] -= c * t1[i];
   }
-  smooth->Update();
-  laplacian->Update();
-
-  const double                             correction = 0.5 * sigma * sigma;
-  ImageRegionConstIterator<FloatImageType> s(smooth->GetOutput(), mask->GetBufferedRegion());
-  ImageRegionConstIterator<FloatImageType> l(laplacian->GetOutput(), mask->GetBufferedRegion());
-  ImageRegionIterator<FloatImageType>      f(function, mask->GetBufferedRegion());
-  for (; !f.IsAtEnd(); ++s, ++l, ++f)
-  {
-    f.Set(static_cast<float>(static_cast<double>(s.Get()) - correction * static_cast<double>(l.Get())));
-  }
-  KeepThinPartsOfTheMask(mask, phi, function);
+  KeepThinPartsOfTheMask(g, m, phi.data(), f);
 }
 } // namespace detail
 } // namespace MeshExtraction

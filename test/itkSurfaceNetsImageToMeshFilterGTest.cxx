@@ -19,6 +19,7 @@
 #include "itkBinaryMask3DMeshSource.h"
 #include "itkDefaultDynamicMeshTraits.h"
 #include "itkImageRegionIteratorWithIndex.h"
+#include "itkMeshExtractionLabelSurface.h"
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
@@ -1295,4 +1296,39 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityOnLabelsKeepsThinPartsAndIsThreadI
   filter->SetLabelSurfaceSigma(-1.0);
   const std::string message = ExceptionDescription([&] { filter->Update(); });
   EXPECT_NE(message.find("LabelSurfaceSigma must be in [0, 16] voxels"), std::string::npos) << message;
+}
+
+TEST(SurfaceNetsImageToMeshFilter, LabelSurfaceFunctionIsTheSignedDistanceToTheVoxelFacesOfAFlatMask)
+{
+  // Inside: x < 12 (a half-space along each of the three axes in turn). Its signed
+  // distance to the voxel faces is linear, which the Gaussian keeps and whose Laplacian
+  // is 0: away from the region's border f is exactly x - 11.5 (in voxels).
+  for (unsigned int axis = 0; axis < 3; ++axis)
+  {
+    SCOPED_TRACE(axis);
+    MaskImage::SizeType size;
+    size.Fill(10);
+    size[axis] = 40;
+    auto mask = MaskImage::New();
+    mask->SetRegions(size);
+    mask->Allocate();
+    for (itk::ImageRegionIteratorWithIndex<MaskImage> it(mask, mask->GetBufferedRegion()); !it.IsAtEnd(); ++it)
+    {
+      it.Set(it.GetIndex()[axis] < 12 ? 1 : 0);
+    }
+    auto function = FloatImage::New();
+    function->SetRegions(size);
+    function->Allocate();
+    const double sigma = 2.0;
+    ME::detail::MakeLabelSurfaceFunction(mask, sigma, function, 2);
+    const auto radius = static_cast<itk::IndexValueType>(std::ceil(4.0 * sigma));
+    for (itk::ImageRegionIteratorWithIndex<FloatImage> it(function, function->GetBufferedRegion()); !it.IsAtEnd(); ++it)
+    {
+      const auto at = it.GetIndex()[axis];
+      if (at >= radius && at < 40 - radius)
+      {
+        ASSERT_NEAR(it.Get(), static_cast<double>(at) - 11.5, 1e-4) << it.GetIndex();
+      }
+    }
+  }
 }
