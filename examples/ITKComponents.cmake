@@ -18,4 +18,7 @@ set(MeshExtractionExamples_ITK_COMPONENTS
   ITKIOTransformInsightLegacy
   ITKIOTransformHDF5
   ITKRegistrationCommon
+  ITKConnectedComponents
+  ITKThresholding
+  ITKDistanceMap
 )

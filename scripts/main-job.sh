@@ -70,6 +70,11 @@ else
   log "mricron-data is not installed: skipping the MRI refinement"
 fi
 
+# 3b. Connected orthogonal contours (chapter 5): the simulated user's table (Table 5.1's
+#     analogue) on two phantoms and, with mricron-data, the Colin27 lateral ventricle.
+log "Connected orthogonal contours: the simulated user (Table 5.1)"
+build/examples/meshextraction-contours-study --markdown "$out/contours-study.md" > "$out/contours-study.txt"
+
 # 4. An index page.
 {
   echo "<!DOCTYPE html><html><head><meta charset='utf-8'><title>MeshExtraction results</title></head>"

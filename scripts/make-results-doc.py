@@ -497,6 +497,20 @@ def main():
                "> {}/refine-cranium.txt".format(ME, d, d, d, d), 0.9,
                "The start is the unrelaxed SurfaceNets mesh at 300 HU (229 components).")
 
+    print("\nConnected orthogonal contours (thesis chapter 5)\n------------------------------------------------")
+    contours = "contours-study.md"
+    if ctx.exists(contours):
+        header, _ = read_comparison(ctx.path(contours))
+        comparison(ctx, "Simulated user: the analogue of Table 5.1", contours,
+                   "build/examples/meshextraction-contours-study --markdown {}/contours-study.md".format(d), header,
+                   "From the three-contour template until the mean contour error is at most 0.5 voxel (12 contours "
+                   "at most for the phantoms, 15 for the ventricle); errors in voxels (1 mm), mean / max. The "
+                   "ventricle's reference: the Colin27 T1's voxels below 40, the largest component inside the head, "
+                   "meshed by SurfaceNets in the high-quality mode.")
+    else:
+        heading("Simulated user: the analogue of Table 5.1", ctx, contours,
+                "build/examples/meshextraction-contours-study --markdown {}/contours-study.md".format(d))
+
     print("\nSpeed\n-----")
     speed(ctx)
     large(ctx)

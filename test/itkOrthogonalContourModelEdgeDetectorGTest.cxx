@@ -19,7 +19,7 @@
 #include "itkEllipsoidImplicitSurface.h"
 #include "itkImage.h"
 #include "itkImplicitSurfaceImageSource.h"
-#include "itkOrthogonalContourModelTestHelpers.h"
+#include "MeshExtractionContourUser.h"
 #include "itkSphereDifferenceImplicitSurface.h"
 #include "itkScaleSpaceEdgeMeshRefinementFilter.h"
 #include "itkSphereImplicitSurface.h"
@@ -36,7 +36,7 @@
 
 namespace
 {
-using namespace OrthogonalContourTest;
+using namespace MeshExtractionContourUser;
 using ImageType = itk::Image<float, 3>;
 using DetectorType = itk::OrthogonalContourModelEdgeDetector<ImageType>;
 
@@ -87,50 +87,6 @@ Detector(const ImageType * image, ModelType * model, double capture)
   detector->SetModel(model);
   detector->SetCaptureRange(capture);
   return detector;
-}
-
-/** What the simulated user did and reached. */
-struct UserRun
-{
-  unsigned int relocations{ 0 };
-  unsigned int contoursAdded{ 0 };
-  unsigned int edgeDetectionRuns{ 0 };
-  double       voxelsTravelled{ 0.0 };
-  double       voxelsTravelledByEdgeDetection{ 0.0 };
-  ContourError error;
-};
-
-/** The simulated user of issue 31 (thesis section 5.3): from the template, it runs
- * EDEMS (when given a detector), puts back on the surface every control point more
- * than half a voxel off it, and adds a contour where the contour error is largest,
- * until the mean contour error is at most `target` or the model has `maximumContours`. */
-UserRun
-SimulateUser(ModelType &                          model,
-             const itk::ImplicitSurfaceFunction & surface,
-             DetectorType *                       detector,
-             double                               target,
-             unsigned int                         maximumContours)
-{
-  UserRun run;
-  for (;;)
-  {
-    if (detector != nullptr)
-    {
-      detector->MoveAllControlPoints();
-      ++run.edgeDetectionRuns;
-      run.voxelsTravelledByEdgeDetection += detector->GetDistanceTravelled();
-    }
-    const UserWork work = SnapToSurface(model, surface, 0.5);
-    run.relocations += work.relocations;
-    run.voxelsTravelled += work.voxelsTravelled;
-    run.error = MeasureContourError(model, surface);
-    if (run.error.mean <= target || model.GetNumberOfContours() >= maximumContours ||
-        !AddContourAtWorstError(model, run.error.worst))
-    {
-      return run;
-    }
-    ++run.contoursAdded;
-  }
 }
 
 void
@@ -248,12 +204,12 @@ TEST(OrthogonalContourModelEdgeDetector, SimulatedUserReachesTheEllipsoidWithFew
   const auto image = Phantom(ellipsoid);
 
   const auto manualModel = Template(image, 10.0);
-  const auto manual = SimulateUser(*manualModel, *ellipsoid, nullptr, 0.5, 12);
+  const auto manual = SimulateUser<DetectorType>(*manualModel, *ellipsoid, nullptr, 0.5, 12);
   Print("ellipsoid, manual", manual, manualModel, ellipsoid);
 
   const auto assistedModel = Template(image, 10.0);
   const auto detector = Detector(image, assistedModel, 4.0);
-  const auto assisted = SimulateUser(*assistedModel, *ellipsoid, detector, 0.5, 12);
+  const auto assisted = SimulateUser(*assistedModel, *ellipsoid, detector.GetPointer(), 0.5, 12);
   Print("ellipsoid, with EDEMS", assisted, assistedModel, ellipsoid);
 
   for (const auto * model : { manualModel.GetPointer(), assistedModel.GetPointer() })
@@ -280,12 +236,12 @@ TEST(OrthogonalContourModelEdgeDetector, SimulatedUserReachesTheIndentedSphereWi
   const auto image = Phantom(indented);
 
   const auto manualModel = Template(image, 10.0);
-  const auto manual = SimulateUser(*manualModel, *indented, nullptr, 0.5, 12);
+  const auto manual = SimulateUser<DetectorType>(*manualModel, *indented, nullptr, 0.5, 12);
   Print("indented sphere, manual", manual, manualModel, indented);
 
   const auto assistedModel = Template(image, 10.0);
   const auto detector = Detector(image, assistedModel, 4.0);
-  const auto assisted = SimulateUser(*assistedModel, *indented, detector, 0.5, 12);
+  const auto assisted = SimulateUser(*assistedModel, *indented, detector.GetPointer(), 0.5, 12);
   Print("indented sphere, with EDEMS", assisted, assistedModel, indented);
 
   for (const auto * model : { manualModel.GetPointer(), assistedModel.GetPointer() })
@@ -311,7 +267,7 @@ TEST(OrthogonalContourModelEdgeDetector, ContourMeshRefinedByChapterFourFitsTheE
   ellipsoid->SetSemiAxes(axes);
   const auto image = Phantom(ellipsoid);
   const auto model = Template(image, 10.0);
-  SimulateUser(*model, *ellipsoid, Detector(image, model, 4.0), 0.5, 12);
+  SimulateUser(*model, *ellipsoid, Detector(image, model, 4.0).GetPointer(), 0.5, 12);
 
   auto mesher = itk::OrthogonalContourModelToMeshFilter<MeshType>::New();
   mesher->SetInput(model);

@@ -17,7 +17,7 @@
  *=========================================================================*/
 #include "itkOrthogonalContourModel.h"
 #include "itkEllipsoidImplicitSurface.h"
-#include "itkOrthogonalContourModelTestHelpers.h"
+#include "MeshExtractionContourUser.h"
 #include "itkSphereImplicitSurface.h"
 #include "itkOrthogonalContourModelToMeshFilter.h"
 #include "itkTriangleMeshQualityCalculator.h"
@@ -568,11 +568,11 @@ FitModel(const itk::ImplicitSurfaceFunction &              surface,
          const std::vector<std::pair<unsigned int, int>> & planes)
 {
   const auto model = MakeTemplate(48, radius);
-  OrthogonalContourTest::SnapToSurface(*model, surface, 0.0);
+  MeshExtractionContourUser::SnapToSurface(*model, surface, 0.0);
   for (const auto & plane : planes)
   {
     EXPECT_TRUE(model->AddContour(plane.first, plane.second)) << model->GetRefusalReason();
-    OrthogonalContourTest::SnapToSurface(*model, surface, 0.0);
+    MeshExtractionContourUser::SnapToSurface(*model, surface, 0.0);
   }
   return model;
 }
@@ -596,7 +596,7 @@ ExpectCloseValidMesh(const ModelType *                    model,
                      double                               maximumTolerance)
 {
   ExpectValidMesh(model, "fitted model");
-  const auto distance = OrthogonalContourTest::MeshDistance(model, surface);
+  const auto distance = MeshExtractionContourUser::MeshDistance(model, surface);
   std::cout << "mesh to surface: vertices mean " << distance.vertices.mean << " max " << distance.vertices.maximum
             << ", Hausdorff " << distance.hausdorff << " (mm, 1 mm voxels, " << model->GetNumberOfContours()
             << " contours)" << std::endl;
@@ -658,7 +658,7 @@ TEST(OrthogonalContourModel, MeshOfContoursOnASphereIsCloseToIt)
   sphere->SetCenter(Pt(24.0, 24.0, 24.0));
   sphere->SetRadius(14.0);
   const auto model = FitModel(*sphere, 10.0, PlanesAround(24, 7));
-  const auto contourError = OrthogonalContourTest::MeasureContourError(*model, *sphere);
+  const auto contourError = MeshExtractionContourUser::MeasureContourError(*model, *sphere);
   std::cout << "sphere: contour error mean " << contourError.mean << " max " << contourError.maximum << std::endl;
   EXPECT_LT(contourError.mean, 0.5);
   ExpectCloseValidMesh(model, sphere, 0.5, 1.5);
@@ -670,7 +670,7 @@ TEST(OrthogonalContourModel, MeshOfContoursOnAnEllipsoidIsCloseToIt)
   ellipsoid->SetCenter(Pt(24.0, 24.0, 24.0));
   ellipsoid->SetSemiAxes(Vec(17.0, 12.0, 9.0));
   const auto model = FitModel(*ellipsoid, 8.0, { { 0, 15 }, { 0, 33 }, { 1, 18 }, { 1, 30 }, { 2, 20 }, { 2, 28 } });
-  const auto contourError = OrthogonalContourTest::MeasureContourError(*model, *ellipsoid);
+  const auto contourError = MeshExtractionContourUser::MeasureContourError(*model, *ellipsoid);
   std::cout << "ellipsoid: contour error mean " << contourError.mean << " max " << contourError.maximum << std::endl;
   EXPECT_LT(contourError.mean, 0.5);
   ExpectCloseValidMesh(model, ellipsoid, 0.5, 2.0);

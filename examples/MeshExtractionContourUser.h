@@ -15,11 +15,15 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-// Helpers of the OrthogonalContourModel tests: a user who knows the exact surface.
-#ifndef itkOrthogonalContourModelTestHelpers_h
-#define itkOrthogonalContourModelTestHelpers_h
+// The simulated user of the connected orthogonal contours (thesis section 5.3, Table 5.1):
+// a user who knows the reference surface and shapes the contour model toward it, with or
+// without edge-assisted moves (EDEMS). Shared by meshextraction-contours-study and the
+// OrthogonalContourModel tests.
+#ifndef MeshExtractionContourUser_h
+#define MeshExtractionContourUser_h
 
 #include "itkImplicitSurfaceFunction.h"
+#include "itkOrthogonalContourModelEdgeDetector.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkOrthogonalContourModel.h"
 #include "itkOrthogonalContourModelToMeshFilter.h"
@@ -30,7 +34,7 @@
 #include <limits>
 #include <vector>
 
-namespace OrthogonalContourTest
+namespace MeshExtractionContourUser
 {
 using ModelType = itk::OrthogonalContourModel;
 using MeshType = itk::QuadEdgeMesh<double, 3>;
@@ -186,11 +190,28 @@ AddContourAtWorstError(ModelType & model, const ModelType::ContinuousIndexType &
     unsigned int axis;
     double       middle;
   };
+  // Beyond the last occupied plane the model ends at its control points, not at the
+  // image's border: a small structure in a large image gets planes through itself.
+  double extent[3][2];
+  for (unsigned int axis = 0; axis < 3; ++axis)
+  {
+    extent[axis][0] = static_cast<double>(model.GetSize()[axis]);
+    extent[axis][1] = -1.0;
+  }
+  for (unsigned int p = 0; p < model.GetNumberOfControlPoints(); ++p)
+  {
+    const auto x = model.GetControlPointIndex(p);
+    for (unsigned int axis = 0; axis < 3; ++axis)
+    {
+      extent[axis][0] = std::min(extent[axis][0], x[axis] - 1.0);
+      extent[axis][1] = std::max(extent[axis][1], x[axis] + 1.0);
+    }
+  }
   std::vector<Candidate> candidates;
   for (unsigned int axis = 0; axis < 3; ++axis)
   {
-    double below = -1.0;
-    double above = static_cast<double>(model.GetSize()[axis]);
+    double below = std::max(-1.0, extent[axis][0]);
+    double above = std::min(static_cast<double>(model.GetSize()[axis]), extent[axis][1]);
     for (unsigned int c = 0; c < model.GetNumberOfContours(); ++c)
     {
       const auto position = static_cast<double>(model.GetContourPosition(c));
@@ -206,7 +227,7 @@ AddContourAtWorstError(ModelType & model, const ModelType::ContinuousIndexType &
     candidates.begin(), candidates.end(), [](const Candidate & a, const Candidate & b) { return a.gap > b.gap; });
   for (const auto & candidate : candidates)
   {
-    for (const int shift : { 0, 1, -1, 2, -2 })
+    for (const int shift : { 0, 1, -1, 2, -2, 3, -3, 4, -4, 6, -6 })
     {
       const auto position = static_cast<itk::IndexValueType>(std::round(candidate.middle)) + shift;
       if (model.AddContour(candidate.axis, position))
@@ -217,6 +238,50 @@ AddContourAtWorstError(ModelType & model, const ModelType::ContinuousIndexType &
   }
   return false;
 }
-} // namespace OrthogonalContourTest
+/** What the simulated user did and reached. */
+struct UserRun
+{
+  unsigned int relocations{ 0 };
+  unsigned int contoursAdded{ 0 };
+  unsigned int edgeDetectionRuns{ 0 };
+  double       voxelsTravelled{ 0.0 };
+  double       voxelsTravelledByEdgeDetection{ 0.0 };
+  ContourError error;
+};
+
+/** The simulated user of issue 31 (thesis section 5.3): from the template, it runs
+ * EDEMS (when given a detector), puts back on the surface every control point more
+ * than half a voxel off it, and adds a contour where the contour error is largest,
+ * until the mean contour error is at most `target` or the model has `maximumContours`. */
+template <typename TDetector>
+UserRun
+SimulateUser(ModelType &                          model,
+             const itk::ImplicitSurfaceFunction & surface,
+             TDetector *                          detector,
+             double                               target,
+             unsigned int                         maximumContours)
+{
+  UserRun run;
+  for (;;)
+  {
+    if (detector != nullptr)
+    {
+      detector->MoveAllControlPoints();
+      ++run.edgeDetectionRuns;
+      run.voxelsTravelledByEdgeDetection += detector->GetDistanceTravelled();
+    }
+    const UserWork work = SnapToSurface(model, surface, 0.5);
+    run.relocations += work.relocations;
+    run.voxelsTravelled += work.voxelsTravelled;
+    run.error = MeasureContourError(model, surface);
+    if (run.error.mean <= target || model.GetNumberOfContours() >= maximumContours ||
+        !AddContourAtWorstError(model, run.error.worst))
+    {
+      return run;
+    }
+    ++run.contoursAdded;
+  }
+}
+} // namespace MeshExtractionContourUser
 
 #endif
