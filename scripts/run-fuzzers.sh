@@ -4,11 +4,15 @@
 #   MeshFileFuzzer    the mesh-file readers (VTK legacy, VTP, PLY, STL, OBJ, OFF) and the
 #                     checks before a QuadEdgeMesh; a refusal is fine, a crash is not
 #   ExtractionFuzzer  SurfaceNets on small volumes; every emitted mesh must be valid
+#   CommandLineFuzzer the command-line tool's commands with fuzzed arguments: a refusal
+#                     (exit 2) or a failure naming the file (exit 1) is fine, any other
+#                     exception, a crash or a hang is not
 #
 #   bash scripts/run-fuzzers.sh [--smoke | --runs N | --seconds S] [BUILD_DIR]
 #
 # --seconds S per fuzzer (default 60), --runs N inputs per fuzzer, or --smoke, the short
-# deterministic run of the test command (seed 1: 20,000 mesh files, 300 volumes). Findings
+# deterministic run of the test command (seed 1: 20,000 mesh files, 300 volumes, 1,000
+# command lines). Findings
 # are written to BUILD_DIR/findings/ and end the script with status 1.
 # Needs Debian's clang-14, libfuzzer-14-dev and libclang-rt-14-dev.
 set -euo pipefail
@@ -31,12 +35,14 @@ CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Re
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$cxxflags" > "$build-configure.log" 2>&1 ||
   { cat "$build-configure.log"; exit 1; }
 mv "$build-configure.log" "$build/configure.log"
-cmake --build "$build" -j "$(nproc)" --target MeshFileFuzzer ExtractionFuzzer
+cmake --build "$build" -j "$(nproc)" --target MeshFileFuzzer ExtractionFuzzer CommandLineFuzzer
 
 # Seeds: the test meshes in each format (the first byte chooses the reader), and a few
 # small volumes; the corpus grows in BUILD_DIR/corpus/ from run to run.
+# Absolute paths: CommandLineFuzzer works in a scratch directory of its own.
+build=$(cd "$build" && pwd)
 corpus=$build/corpus
-mkdir -p "$corpus/mesh" "$corpus/extraction" "$build/findings"
+mkdir -p "$corpus/mesh" "$corpus/extraction" "$corpus/commandline" "$build/findings"
 index=0
 for extension in vtk vtp ply stl obj off; do
   for seed in test/Input/*."$extension"; do
@@ -53,15 +59,34 @@ printf "\x02$tetrahedron_ply" > "$corpus/mesh/seed-tetrahedron-ply"
 printf "\x03$tetrahedron_stl" > "$corpus/mesh/seed-triangle-stl"
 printf '\x04\x04\x04\x00\x80\x80\x80\x80\x80\x05\x05\x80\x80\x05\x05\x80' > "$corpus/extraction/seed-block"
 printf '\x06\x06\x06\x12\x80\x7f\x80\x7f\x00\x80\x7f\x80' > "$corpus/extraction/seed-checker-hq"
+# Command lines: the first byte chooses the command (0 phantom, 1 extract, 2 improve,
+# 3 refine, 4 quality, 5 report, 6 match, 7 shape-model), NUL bytes separate the arguments;
+# the scratch directory holds m.obj, m.vtk and s.nrrd.
+seed_command() { # seed_command NAME INDEX ARGS...
+  local name=$1 index=$2
+  shift 2
+  { printf "\\x$(printf %02x "$index")"; printf '%s\0' "$@"; } > "$corpus/commandline/seed-$name"
+}
+seed_command phantom 0 sphere p.nrrd --size 12 --spacing 1x1x2
+seed_command extract 1 s.nrrd e.vtk --iso 0 --inside below --quality high --rounds 2 --report
+seed_command extract-phantom 1 --phantom torus t.ply --size 16 --label-sigma 1.5 --min-component-voxels 3
+seed_command improve 2 m.obj i.stl --iterations 3
+seed_command refine 3 s.nrrd m.vtk r.vtk --max-deviation 2 --cycles 1 --csv r.csv
+seed_command quality 4 m.obj m.vtk --json q.json --csv q.csv --phantom sphere --image s.nrrd
+seed_command report 5 rep m.obj --title x
+seed_command match 6 s.nrrd s.nrrd --fixed-landmarks a.json --moving-landmarks b.json
+seed_command shape-model 7 m.obj m.obj --output x.h5
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 status=0
-for fuzzer in MeshFileFuzzer ExtractionFuzzer; do
+for fuzzer in MeshFileFuzzer ExtractionFuzzer CommandLineFuzzer; do
   dir=$corpus/mesh
   [ $fuzzer = ExtractionFuzzer ] && dir=$corpus/extraction
+  [ $fuzzer = CommandLineFuzzer ] && dir=$corpus/commandline
   if [ $smoke = 1 ]; then
     runs=20000
     [ $fuzzer = ExtractionFuzzer ] && runs=300
+    [ $fuzzer = CommandLineFuzzer ] && runs=1000
     limit=(-runs=$runs -seed=1)
   fi
   echo "== $fuzzer ${limit[*]}"

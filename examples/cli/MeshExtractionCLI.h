@@ -276,8 +276,22 @@ CheckVoxelValues(const itk::Image<float, 3> * image, const std::string & path);
 ME::PhantomGrid
 ReadImageGrid(const std::string & path);
 
+/** Writes an output whole or not at all: `write` writes a partial file beside `path`
+ * (its name keeps the extension, which names the format), which then replaces `path` in
+ * one rename; if `write` throws, the partial file is removed and `path` is left as it
+ * was, and the exception names `path`. */
+void
+WriteWhole(const std::string & path, const std::function<void(const std::string & partial)> & write);
+
+/** WriteWhole for text: `write` writes to a stream, which is checked after it is
+ * flushed and closed (a full disk or a size limit is an error, not a short file). */
+void
+WriteTextWhole(const std::string & path, const std::function<void(std::ostream & out)> & write);
+
 /** Writes an image (compressed where the format allows) in the format the extension
- * names. Provided for the pixel types of ReadImageFile. */
+ * names, whole or not at all (WriteWhole), except in formats whose header names a
+ * separate data file (.mhd, .nhdr, .hdr), which are written in place. Provided for the
+ * pixel types of ReadImageFile. */
 template <typename TImage>
 void
 WriteImageFile(const TImage * image, const std::string & path);

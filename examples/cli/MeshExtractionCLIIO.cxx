@@ -40,6 +40,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -386,18 +387,42 @@ template <typename TImage>
 void
 WriteImageFile(const TImage * image, const std::string & path)
 {
-  auto writer = itk::ImageFileWriter<TImage>::New();
-  writer->SetFileName(path);
-  writer->SetInput(image);
-  writer->SetUseCompression(true);
-  try
-  {
+  auto write = [image](const std::string & file) {
+    auto writer = itk::ImageFileWriter<TImage>::New();
+    writer->SetFileName(file);
+    writer->SetInput(image);
+    writer->SetUseCompression(true);
     writer->Update();
-  }
-  catch (const itk::ExceptionObject & e)
+  };
+  const std::string extension = itksys::SystemTools::LowerCase(itksys::SystemTools::GetFilenameLastExtension(path));
+  if (extension == ".mhd" || extension == ".nhdr" || extension == ".hdr")
   {
-    itkGenericExceptionMacro("cannot write image '" << path << "': " << e.GetDescription());
+    // The header names its data file by the name written: a renamed header would point
+    // at a partial data file.
+    try
+    {
+      write(path);
+    }
+    catch (const itk::ExceptionObject & e)
+    {
+      itkGenericExceptionMacro("cannot write image '" << path << "': " << e.GetDescription());
+    }
+    return;
   }
+  // ITK's image writers do not all report a failed write (a full disk, a size limit):
+  // the partial file is read back, with the reader's own checks, before it replaces path.
+  WriteWhole(path, [&write](const std::string & partial) {
+    write(partial);
+    try
+    {
+      ReadImageFile<TImage>(partial);
+    }
+    catch (const itk::ExceptionObject & e)
+    {
+      itkGenericExceptionMacro(
+        "the file written does not read back whole (disk full or a file size limit?): " << Describe(e));
+    }
+  });
 }
 
 // The pixel types the commands read and write.
@@ -567,6 +592,54 @@ RequireWrittenWhole(const ME::PolygonMesh & faces, const std::string & written)
   }
 }
 
+} // namespace
+
+void
+WriteWhole(const std::string & path, const std::function<void(const std::string & partial)> & write)
+{
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(path, error) && !fs::is_regular_file(path, error))
+  {
+    itkGenericExceptionMacro("cannot write '" << path << "': it exists and is not a regular file");
+  }
+  const std::string partial = PartialFileName(path);
+  try
+  {
+    write(partial);
+    fs::rename(partial, path, error);
+    if (error)
+    {
+      itkGenericExceptionMacro("cannot rename the written file to it: " << error.message());
+    }
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    fs::remove(partial, error);
+    itkGenericExceptionMacro("cannot write '" << path << "': " << Describe(e));
+  }
+}
+
+void
+WriteTextWhole(const std::string & path, const std::function<void(std::ostream & out)> & write)
+{
+  WriteWhole(path, [&write](const std::string & partial) {
+    std::ofstream out(partial);
+    if (!out)
+    {
+      itkGenericExceptionMacro("cannot open '" << partial << "' for writing");
+    }
+    write(out);
+    out.close();
+    if (!out)
+    {
+      itkGenericExceptionMacro("the write failed (disk full or a file size limit?)");
+    }
+  });
+}
+
+namespace
+{
 /** Writes to a partial file beside `path`, checks it, then renames it to `path`: a
  * failed write never replaces an existing file. */
 void

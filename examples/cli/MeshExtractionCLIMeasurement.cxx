@@ -143,59 +143,53 @@ PrintComparison(const std::vector<MeasuredMesh> & meshes, std::ostream & os)
 void
 WriteJSON(const std::vector<MeasuredMesh> & meshes, const std::string & path)
 {
-  std::ofstream out(path);
-  if (!out)
-  {
-    itkGenericExceptionMacro("cannot write '" << path << "'");
-  }
-  out << "[\n";
-  for (std::size_t i = 0; i < meshes.size(); ++i)
-  {
-    out << "  {\"mesh\": " << itk::MeshExtraction::detail::JSONString{ meshes[i].name } << ", \"quality\": ";
-    meshes[i].quality.PrintJSON(out);
-    if (meshes[i].hasDistance)
+  WriteTextWhole(path, [&meshes](std::ostream & out) {
+    out << "[\n";
+    for (std::size_t i = 0; i < meshes.size(); ++i)
     {
-      out << ", \"distance\": ";
-      meshes[i].distance.PrintJSON(out);
+      out << "  {\"mesh\": " << itk::MeshExtraction::detail::JSONString{ meshes[i].name } << ", \"quality\": ";
+      meshes[i].quality.PrintJSON(out);
+      if (meshes[i].hasDistance)
+      {
+        out << ", \"distance\": ";
+        meshes[i].distance.PrintJSON(out);
+      }
+      out << '}' << (i + 1 < meshes.size() ? "," : "") << '\n';
     }
-    out << '}' << (i + 1 < meshes.size() ? "," : "") << '\n';
-  }
-  out << "]\n";
+    out << "]\n";
+  });
 }
 
 void
 WriteHistogramsCSV(const std::vector<MeasuredMesh> & meshes, const std::string & path)
 {
-  std::ofstream out(path);
-  if (!out)
-  {
-    itkGenericExceptionMacro("cannot write '" << path << "'");
-  }
-  out << "mesh,measure,bin_lower,bin_upper,count\n";
-  for (const auto & m : meshes)
-  {
-    const std::pair<const char *, const ME::ValueStatistics *> measures[] = {
-      { "q_area", &m.quality.qArea },
-      { "q_angle", &m.quality.qAngle },
-      { "q_length", &m.quality.qLength },
-      { "min_angle_deg", &m.quality.minimumAngle },
-      { "max_angle_deg", &m.quality.maximumAngle },
-    };
-    for (const auto & measure : measures)
+  WriteTextWhole(path, [&meshes](std::ostream & out) {
+    out << "mesh,measure,bin_lower,bin_upper,count\n";
+    for (const auto & m : meshes)
     {
-      const auto & s = *measure.second;
-      const double width = (s.histogramUpper - s.histogramLower) / s.histogram.size();
-      for (std::size_t b = 0; b < s.histogram.size(); ++b)
+      const std::pair<const char *, const ME::ValueStatistics *> measures[] = {
+        { "q_area", &m.quality.qArea },
+        { "q_angle", &m.quality.qAngle },
+        { "q_length", &m.quality.qLength },
+        { "min_angle_deg", &m.quality.minimumAngle },
+        { "max_angle_deg", &m.quality.maximumAngle },
+      };
+      for (const auto & measure : measures)
       {
-        out << m.name << ',' << measure.first << ',' << s.histogramLower + b * width << ','
-            << s.histogramLower + (b + 1) * width << ',' << s.histogram[b] << '\n';
+        const auto & s = *measure.second;
+        const double width = (s.histogramUpper - s.histogramLower) / s.histogram.size();
+        for (std::size_t b = 0; b < s.histogram.size(); ++b)
+        {
+          out << m.name << ',' << measure.first << ',' << s.histogramLower + b * width << ','
+              << s.histogramLower + (b + 1) * width << ',' << s.histogram[b] << '\n';
+        }
+      }
+      for (std::size_t d = 0; d < m.quality.valenceHistogram.size(); ++d)
+      {
+        out << m.name << ",valence," << d << ',' << d + 1 << ',' << m.quality.valenceHistogram[d] << '\n';
       }
     }
-    for (std::size_t d = 0; d < m.quality.valenceHistogram.size(); ++d)
-    {
-      out << m.name << ",valence," << d << ',' << d + 1 << ',' << m.quality.valenceHistogram[d] << '\n';
-    }
-  }
+  });
 }
 
 } // namespace MeshExtractionCLI

@@ -196,17 +196,12 @@ BlankCanvas(const RenderOptions & o)
 void
 WriteRGBImage(const RGBImageType * image, const std::string & path)
 {
-  auto writer = itk::ImageFileWriter<RGBImageType>::New();
-  writer->SetInput(image);
-  writer->SetFileName(path);
-  try
-  {
+  WriteWhole(path, [image](const std::string & partial) {
+    auto writer = itk::ImageFileWriter<RGBImageType>::New();
+    writer->SetInput(image);
+    writer->SetFileName(partial);
     writer->Update();
-  }
-  catch (const itk::ExceptionObject & e)
-  {
-    itkGenericExceptionMacro("cannot write '" << path << "': " << e.GetDescription());
-  }
+  });
 }
 } // namespace
 

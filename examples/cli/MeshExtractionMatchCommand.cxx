@@ -151,17 +151,12 @@ PrintResiduals(const std::string &              label,
 void
 WriteTransform(const TransformType * transform, const std::string & path)
 {
-  auto writer = itk::TransformFileWriterTemplate<double>::New();
-  writer->SetInput(transform);
-  writer->SetFileName(path);
-  try
-  {
+  WriteWhole(path, [transform](const std::string & partial) {
+    auto writer = itk::TransformFileWriterTemplate<double>::New();
+    writer->SetInput(transform);
+    writer->SetFileName(partial);
     writer->Update();
-  }
-  catch (const itk::ExceptionObject & e)
-  {
-    itkGenericExceptionMacro("cannot write transform '" << path << "': " << Describe(e));
-  }
+  });
 }
 
 /** The moving image seen in the fixed image's grid (linear interpolation; 0 outside). */
@@ -327,17 +322,12 @@ WriteAlignmentPicture(const ImageType *         fixed,
     }
     left += s.width;
   }
-  auto writer = itk::ImageFileWriter<PictureType>::New();
-  writer->SetInput(picture);
-  writer->SetFileName(path);
-  try
-  {
+  WriteWhole(path, [&picture](const std::string & partial) {
+    auto writer = itk::ImageFileWriter<PictureType>::New();
+    writer->SetInput(picture);
+    writer->SetFileName(partial);
     writer->Update();
-  }
-  catch (const itk::ExceptionObject & e)
-  {
-    itkGenericExceptionMacro("cannot write image '" << path << "': " << Describe(e));
-  }
+  });
 }
 
 // ---- the command -------------------------------------------------------------------

@@ -381,12 +381,7 @@ PrintRefinement(const RefineFilterType * filter,
 void
 WriteStepsCSV(const RefineFilterType * filter, const std::string & path)
 {
-  std::ofstream out(path);
-  if (!out)
-  {
-    itkGenericExceptionMacro("cannot write '" << path << "'");
-  }
-  ME::WriteScaleSpaceRefinementCSV(out, filter->GetSteps());
+  WriteTextWhole(path, [filter](std::ostream & out) { ME::WriteScaleSpaceRefinementCSV(out, filter->GetSteps()); });
 }
 
 /** --report: the quality (and phantom distances) before and after, side by side. */

@@ -133,36 +133,33 @@ WriteHistogramSVG(const std::vector<MeasuredMesh> & meshes,
                   const std::string &               path)
 {
   static const char * colours[] = { "#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#edc948", "#b07aa1" };
-  std::ofstream       out(path);
-  if (!out)
-  {
-    itkGenericExceptionMacro("cannot write '" << path << "'");
-  }
-  const Chart  chart;
-  const auto   bins = measure(meshes.front()).histogram.size();
-  const double largest = LargestShare(meshes, measure);
-  const double group = chart.plotWidth / bins;
-  const double bar = 0.8 * group / meshes.size();
-  out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << chart.width << "' height='"
-      << chart.height + 18 * meshes.size() << "' font-family='sans-serif' font-size='11'>\n";
-  WriteChartAxes(out, chart, title, largest, measure(meshes.front()));
-  for (std::size_t m = 0; m < meshes.size(); ++m)
-  {
-    const auto & s = measure(meshes[m]);
-    for (std::size_t b = 0; b < s.histogram.size(); ++b)
+  WriteTextWhole(path, [&](std::ostream & out) {
+    const Chart  chart;
+    const auto   bins = measure(meshes.front()).histogram.size();
+    const double largest = LargestShare(meshes, measure);
+    const double group = chart.plotWidth / bins;
+    const double bar = 0.8 * group / meshes.size();
+    out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << chart.width << "' height='"
+        << chart.height + 18 * meshes.size() << "' font-family='sans-serif' font-size='11'>\n";
+    WriteChartAxes(out, chart, title, largest, measure(meshes.front()));
+    for (std::size_t m = 0; m < meshes.size(); ++m)
     {
-      const double fraction = s.count ? static_cast<double>(s.histogram[b]) / s.count : 0.0;
-      const double h = chart.plotHeight * fraction / largest;
-      out << "<rect x='" << chart.left + group * b + 0.1 * group + bar * m << "' y='"
-          << chart.top + chart.plotHeight - h << "' width='" << bar << "' height='" << h << "' fill='" << colours[m % 7]
-          << "'/>\n";
+      const auto & s = measure(meshes[m]);
+      for (std::size_t b = 0; b < s.histogram.size(); ++b)
+      {
+        const double fraction = s.count ? static_cast<double>(s.histogram[b]) / s.count : 0.0;
+        const double h = chart.plotHeight * fraction / largest;
+        out << "<rect x='" << chart.left + group * b + 0.1 * group + bar * m << "' y='"
+            << chart.top + chart.plotHeight - h << "' width='" << bar << "' height='" << h << "' fill='"
+            << colours[m % 7] << "'/>\n";
+      }
+      const double y = chart.height + 18 * m;
+      out << "<rect x='" << chart.left << "' y='" << y - 10 << "' width='12' height='12' fill='" << colours[m % 7]
+          << "'/><text x='" << chart.left + 18 << "' y='" << y << "'>" << HtmlEscape(names[m]) << " (mean "
+          << std::setprecision(3) << s.mean << ")</text>\n";
     }
-    const double y = chart.height + 18 * m;
-    out << "<rect x='" << chart.left << "' y='" << y - 10 << "' width='12' height='12' fill='" << colours[m % 7]
-        << "'/><text x='" << chart.left + 18 << "' y='" << y << "'>" << HtmlEscape(names[m]) << " (mean "
-        << std::setprecision(3) << s.mean << ")</text>\n";
-  }
-  out << "</svg>\n";
+    out << "</svg>\n";
+  });
 }
 
 /** The renderings of the mesh-th mesh are named by its position, never by its file

@@ -71,7 +71,8 @@ WriteCorresponded(const Estimator & estimator, const std::vector<std::string> & 
     const auto mesh = estimator.GetCorrespondedMesh(i);
     if (ply)
     {
-      ME::WritePLYFile(path, ME::MakeIndexedTriangleMesh(*mesh));
+      WriteWhole(
+        path, [&mesh](const std::string & partial) { ME::WritePLYFile(partial, ME::MakeIndexedTriangleMesh(*mesh)); });
     }
     else
     {
@@ -115,7 +116,7 @@ RunShapeModel(const Arguments & args)
   Stopwatch watch;
   estimator->Update();
   PrintModel(*estimator, watch.Seconds());
-  estimator->WriteModel(args.Get("output"));
+  WriteWhole(args.Get("output"), [&estimator](const std::string & partial) { estimator->WriteModel(partial); });
   std::cout << "model written to " << args.Get("output") << '\n';
   if (args.Has("corresponded"))
   {
