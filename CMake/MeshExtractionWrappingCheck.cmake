@@ -4,7 +4,11 @@
 # It reads every .wrap file with stand-ins for the ITK wrapping macros they use
 # (itk_wrap_class, itk_wrap_template, itk_wrap_simple_class, itk_wrap_image_filter,
 # itk_wrap_include, UNIQUE) under ITK's default wrapping options plus unsigned short
-# (pixel types UC, US, SS, F; double not wrapped; dimensions 2 and 3), and
+# (pixel types UC, US, SS, F; double not wrapped; dimensions 2 and 3), or with
+# -DPROFILE=wheel under the settings of ITK's Python wheels (UC, US, SS, F, D;
+# dimensions 2, 3 and 4), and
+#  - checks that nothing is wrapped that ITK's own wrapping has already (Python would
+#    warn "already defined"), the superclasses of POINTER_WITH_SUPERCLASS classes too;
 #  - checks that every public class of include/ (each class with
 #    itkOverrideGetNameOfClassMacro, and each *Enums class) is wrapped;
 #  - checks that no class gets the same mangled name twice, that no wrapped class is
@@ -22,7 +26,13 @@
 
 cmake_policy(SET CMP0057 NEW) # if(... IN_LIST ...), also in script mode
 
-# --- ITK's type names (ITK's WrapITKTypes.cmake) and default options ----------------
+# --- ITK's type names (ITK's WrapITKTypes.cmake) and wrapping options ----------------
+# PROFILE "default": ITK's default options plus unsigned short (UC, US, SS, F;
+# dimensions 2 and 3); "wheel": the settings ITK's Python wheels are built with (UC, US,
+# SS, F, D; dimensions 2, 3 and 4).
+if(NOT DEFINED PROFILE)
+  set(PROFILE default)
+endif()
 set(ITKT_UC "unsigned char")
 set(ITKT_US "unsigned short")
 set(ITKT_SS "signed short")
@@ -30,18 +40,93 @@ set(ITKT_F "float")
 set(ITKT_D "double")
 foreach(_meshextraction_t UC US SS F D)
   set(ITKM_${_meshextraction_t} "${_meshextraction_t}")
-  foreach(_meshextraction_d 2 3)
+  foreach(_meshextraction_d 2 3 4)
     set(ITKM_I${_meshextraction_t}${_meshextraction_d} "I${_meshextraction_t}${_meshextraction_d}")
     set(ITKT_I${_meshextraction_t}${_meshextraction_d} "itk::Image< ${ITKT_${_meshextraction_t}},${_meshextraction_d} >")
   endforeach()
 endforeach()
-set(ITKM_PD3 "PD3")
-set(ITKT_PD3 "itk::Point< double,3 >")
-set(ITK_WRAP_IMAGE_DIMS 2 3)
+foreach(_meshextraction_d 2 3 4)
+  set(ITKM_PD${_meshextraction_d} "PD${_meshextraction_d}")
+  set(ITKT_PD${_meshextraction_d} "itk::Point< double,${_meshextraction_d} >")
+endforeach()
 set(WRAP_ITK_INT UC US SS)
-set(WRAP_ITK_REAL F)
+if(PROFILE STREQUAL "wheel")
+  set(ITK_WRAP_IMAGE_DIMS 2 3 4)
+  set(WRAP_ITK_REAL F D)
+  set(ITK_WRAP_double ON)
+elseif(PROFILE STREQUAL "default")
+  set(ITK_WRAP_IMAGE_DIMS 2 3)
+  set(WRAP_ITK_REAL F)
+  set(ITK_WRAP_double OFF)
+else()
+  message(FATAL_ERROR "MeshExtractionWrappingCheck: PROFILE must be default or wheel, got '${PROFILE}'")
+endif()
+set(ITK_WRAP_DIMS ${ITK_WRAP_IMAGE_DIMS})
 set(WRAP_ITK_SCALAR ${WRAP_ITK_INT} ${WRAP_ITK_REAL})
-set(ITK_WRAP_double OFF)
+
+# --- what ITK's own wrapping already has, for the classes the module's types meet -----
+# (ITK's Modules/Core/{Common,Mesh,QuadEdgeMesh}/wrapping): a .wrap file that wraps one
+# of these again, or a class wrapped with its superclass that is one of these, makes
+# Python warn "already defined" on import. Entries are "class|template arguments"
+# without spaces.
+function(_meshextraction_itk_wrapped _class _arguments)
+  string(REPLACE " " "" _arguments "${_arguments}")
+  set_property(GLOBAL APPEND PROPERTY MESHEXTRACTION_ITK_WRAPPED "${_class}|${_arguments}")
+endfunction()
+set_property(GLOBAL PROPERTY MESHEXTRACTION_ITK_WRAPPED "")
+foreach(_meshextraction_d ${ITK_WRAP_IMAGE_DIMS})
+  foreach(_meshextraction_t ${WRAP_ITK_REAL})
+    set(_t "${ITKT_${_meshextraction_t}}")
+    set(_d ${_meshextraction_d})
+    _meshextraction_itk_wrapped("itk::SpatialFunction" "${_t},${_d},${ITKT_PD${_d}}")
+    _meshextraction_itk_wrapped("itk::ImageToMeshFilter"
+      "${ITKT_I${_meshextraction_t}${_d}}, itk::Mesh< double,${_d},itk::DefaultStaticMeshTraits< double,${_d},${_d},double > >")
+    _meshextraction_itk_wrapped("itk::MeshSource" "itk::Mesh< ${_t},${_d},itk::DefaultStaticMeshTraits< ${_t},${_d},${_d},${_t} > >")
+    _meshextraction_itk_wrapped("itk::MeshSource" "itk::Mesh< ${_t},${_d},itk::DefaultDynamicMeshTraits< ${_t},${_d},${_d},${_t} > >")
+  endforeach()
+  foreach(_meshextraction_t ${WRAP_ITK_SCALAR} D)
+    _meshextraction_itk_wrapped("itk::Mesh" "${ITKT_${_meshextraction_t}},${_meshextraction_d}")
+  endforeach()
+  _meshextraction_itk_wrapped("itk::QuadEdgeMeshToQuadEdgeMeshFilter"
+    "itk::QuadEdgeMesh< double,${_meshextraction_d} >, itk::QuadEdgeMesh< double,${_meshextraction_d} >")
+endforeach()
+# The superclass ITK's wrapping makes of a class wrapped POINTER_WITH_SUPERCLASS: its
+# name and how many of the class's template arguments it takes.
+set(_meshextraction_superclass_itk::SurfaceNetsImageToMeshFilter "itk::ImageToMeshFilter;2")
+
+# The first `count` top-level template arguments of `arguments` (commas inside < > kept).
+function(_meshextraction_first_arguments _arguments _count _var)
+  set(_depth 0)
+  set(_taken 0)
+  set(_result "")
+  string(LENGTH "${_arguments}" _length)
+  math(EXPR _last "${_length} - 1")
+  foreach(_i RANGE 0 ${_last})
+    string(SUBSTRING "${_arguments}" ${_i} 1 _c)
+    if(_c STREQUAL "<")
+      math(EXPR _depth "${_depth} + 1")
+    elseif(_c STREQUAL ">")
+      math(EXPR _depth "${_depth} - 1")
+    elseif(_c STREQUAL "," AND _depth EQUAL 0)
+      math(EXPR _taken "${_taken} + 1")
+      if(_taken EQUAL _count)
+        break()
+      endif()
+    endif()
+    string(APPEND _result "${_c}")
+  endforeach()
+  set(${_var} "${_result}" PARENT_SCOPE)
+endfunction()
+
+# A problem if ITK's own wrapping has `class<arguments>` already.
+function(_meshextraction_check_not_itk_wrapped _class _arguments _what)
+  string(REPLACE " " "" _key "${_class}|${_arguments}")
+  get_property(_itk GLOBAL PROPERTY MESHEXTRACTION_ITK_WRAPPED)
+  if("${_key}" IN_LIST _itk)
+    _meshextraction_wrap_problem(
+      "${_meshextraction_wrap_file}: ${_what} ${_class}< ${_arguments} >, which ITK's own wrapping has (${PROFILE} settings)")
+  endif()
+endfunction()
 
 # --- stand-ins for the wrapping macros -----------------------------------------------
 # State lives in global properties: the .wrap files call these from their own scope.
@@ -83,6 +168,14 @@ function(itk_wrap_template _mangled _arguments)
     _meshextraction_wrap_problem("${_meshextraction_wrap_file}: ${_class} gets the mangled name ${_mangled} twice")
   endif()
   set_property(GLOBAL APPEND PROPERTY MESHEXTRACTION_WRAP_MANGLED "${_mangled}")
+  _meshextraction_check_not_itk_wrapped("${_class}" "${_arguments}" "wraps")
+  get_property(_pointerKind GLOBAL PROPERTY MESHEXTRACTION_WRAP_POINTER)
+  if(_pointerKind MATCHES "WITH_SUPERCLASS" AND DEFINED _meshextraction_superclass_${_class})
+    list(GET _meshextraction_superclass_${_class} 0 _superclass)
+    list(GET _meshextraction_superclass_${_class} 1 _count)
+    _meshextraction_first_arguments("${_arguments}" ${_count} _superArguments)
+    _meshextraction_check_not_itk_wrapped("${_superclass}" "${_superArguments}" "wraps, as the superclass of ${_class},")
+  endif()
   # One line per instantiation (the arguments contain commas, not semicolons).
   set_property(GLOBAL APPEND_STRING PROPERTY MESHEXTRACTION_WRAP_CODE
     "template class ${_class}< ${_arguments} >; // ${_mangled}\n")
