@@ -19,10 +19,15 @@
 
 #include "MeshExtractionCLI.h"
 
+#include "itkImageRegionConstIterator.h"
+#include "itkImageRegionIterator.h"
 #include "itkImplicitSurfaceImageSource.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
+#include <cctype>
 #include <cmath>
+#include <fstream>
+#include <map>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -416,6 +421,241 @@ ReportOnMesh(const Arguments &                    args,
   }
 }
 
+// ------------------------------------------------------------------------------
+// Every label of a label map (--all-labels, --label-list)
+// ------------------------------------------------------------------------------
+/** A label's voxels: how many, and their bounding box (buffer indices). */
+struct LabelExtent
+{
+  std::size_t  voxels{ 0 };
+  std::int64_t lower[3]{ std::numeric_limits<std::int64_t>::max(),
+                         std::numeric_limits<std::int64_t>::max(),
+                         std::numeric_limits<std::int64_t>::max() };
+  std::int64_t upper[3]{ -1, -1, -1 };
+};
+
+using LabelMapType = itk::Image<unsigned int, 3>;
+using MaskType = itk::Image<unsigned char, 3>;
+
+/** Every non-zero label's voxels and bounding box, in one pass. */
+std::map<unsigned int, LabelExtent>
+MeasureLabels(const LabelMapType * labels)
+{
+  std::map<unsigned int, LabelExtent> extents;
+  const auto                          size = labels->GetBufferedRegion().GetSize();
+  const unsigned int *                buffer = labels->GetBufferPointer();
+  LabelExtent *                       last = nullptr;
+  unsigned int                        lastLabel = 0;
+  std::size_t                         i = 0;
+  for (std::int64_t z = 0; z < static_cast<std::int64_t>(size[2]); ++z)
+  {
+    for (std::int64_t y = 0; y < static_cast<std::int64_t>(size[1]); ++y)
+    {
+      for (std::int64_t x = 0; x < static_cast<std::int64_t>(size[0]); ++x, ++i)
+      {
+        const unsigned int label = buffer[i];
+        if (label == 0)
+        {
+          continue;
+        }
+        if (last == nullptr || label != lastLabel)
+        {
+          last = &extents[label];
+          lastLabel = label;
+        }
+        ++last->voxels;
+        const std::int64_t at[3] = { x, y, z };
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          last->lower[d] = std::min(last->lower[d], at[d]);
+          last->upper[d] = std::max(last->upper[d], at[d]);
+        }
+      }
+    }
+  }
+  return extents;
+}
+
+/** The label's voxels (1) in its bounding box and one voxel around it, clipped to the
+ * image, in physical space where the label map has them: its surface is the one the
+ * whole image gives, for far less work when the label is small. */
+MaskType::Pointer
+CropLabelMask(const LabelMapType * labels, unsigned int label, const LabelExtent & extent)
+{
+  const auto               size = labels->GetBufferedRegion().GetSize();
+  const auto               first = labels->GetBufferedRegion().GetIndex();
+  LabelMapType::RegionType region;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    const std::int64_t lower = std::max<std::int64_t>(0, extent.lower[d] - 1);
+    const std::int64_t upper = std::min<std::int64_t>(static_cast<std::int64_t>(size[d]) - 1, extent.upper[d] + 1);
+    region.SetIndex(d, first[d] + lower);
+    region.SetSize(d, static_cast<itk::SizeValueType>(upper - lower + 1));
+  }
+  auto mask = MaskType::New();
+  mask->SetRegions(region);
+  mask->SetSpacing(labels->GetSpacing());
+  mask->SetOrigin(labels->GetOrigin());
+  mask->SetDirection(labels->GetDirection());
+  mask->Allocate();
+  itk::ImageRegionConstIterator<LabelMapType> in(labels, region);
+  itk::ImageRegionIterator<MaskType>          out(mask, region);
+  for (; !in.IsAtEnd(); ++in, ++out)
+  {
+    out.Set(in.Get() == label ? 1 : 0);
+  }
+  return mask;
+}
+
+/** Label names from a colour table: 3D Slicer's (.ctbl, .txt: "index name r g b a") or
+ * ITK-SNAP's label description ("index r g b a visible mesh \"name\""); '#' starts a
+ * comment. A line that names no integer index is refused with its number. */
+std::map<unsigned int, std::string>
+ReadLabelNames(const std::string & path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    itkGenericExceptionMacro("cannot read the label names '" << path << "'");
+  }
+  std::map<unsigned int, std::string> names;
+  std::string                         line;
+  for (unsigned int number = 1; std::getline(in, line); ++number)
+  {
+    const auto start = line.find_first_not_of(" \t\r");
+    if (start == std::string::npos || line[start] == '#')
+    {
+      continue;
+    }
+    std::istringstream fields(line);
+    long               index = -1;
+    if (!(fields >> index) || index < 0 || index > std::numeric_limits<unsigned int>::max())
+    {
+      itkGenericExceptionMacro("'" << path << "', line " << number << ": no label index (a non-negative integer)");
+    }
+    std::string name;
+    const auto  quote = line.find('"');
+    if (quote != std::string::npos)
+    {
+      const auto end = line.find('"', quote + 1);
+      name = line.substr(quote + 1, end == std::string::npos ? std::string::npos : end - quote - 1);
+    }
+    else
+    {
+      fields >> name;
+    }
+    names[static_cast<unsigned int>(index)] = name;
+  }
+  return names;
+}
+
+/** OUTPUT with the label (and its name, letters, digits, '-' and '_' kept) before the
+ * extension: out.vtk -> out-3-liver.vtk. */
+std::string
+LabelOutputName(const std::string & output, unsigned int label, const std::string & name)
+{
+  std::string tag = std::to_string(label);
+  if (!name.empty())
+  {
+    tag += '-';
+    for (char c : name)
+    {
+      tag += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
+    }
+  }
+  const auto dot = output.find_last_of('.');
+  const auto slash = output.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    return output + '-' + tag;
+  }
+  return output.substr(0, dot) + '-' + tag + output.substr(dot);
+}
+
+/** The labels --label-list names, or every label of the map (--all-labels). */
+std::vector<unsigned int>
+ChosenLabels(const Arguments & args, const std::map<unsigned int, LabelExtent> & extents)
+{
+  std::vector<unsigned int> chosen;
+  if (!args.Has("label-list"))
+  {
+    for (const auto & entry : extents)
+    {
+      chosen.push_back(entry.first);
+    }
+    return chosen;
+  }
+  std::string text = args.Get("label-list");
+  for (char & c : text)
+  {
+    c = c == ',' ? ' ' : c;
+  }
+  std::istringstream in(text);
+  std::string        token;
+  while (in >> token)
+  {
+    const double v = Arguments::ParseDouble("label-list", token);
+    if (!(v >= 1.0 && v <= std::numeric_limits<unsigned int>::max() && v == std::floor(v)))
+    {
+      throw UsageError("--label-list takes labels >= 1 (integers), got '" + token + "'");
+    }
+    if (extents.count(static_cast<unsigned int>(v)) == 0)
+    {
+      itkGenericExceptionMacro("the label map has no voxel with the label " << token);
+    }
+    chosen.push_back(static_cast<unsigned int>(v));
+  }
+  if (chosen.empty())
+  {
+    throw UsageError("--label-list names no label");
+  }
+  return chosen;
+}
+
+/** extract LABELS OUTPUT --all-labels: one closed surface per label, each from its own
+ * crop of the map, written as OUTPUT-<label>[-<name>].<ext>. */
+int
+RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings & writeSettings)
+{
+  const std::string input = args.positional[0];
+  const std::string output = args.positional[1];
+  std::cerr << "extract: " << input << ", every label\n";
+  const auto labels = ReadLabelImage<LabelMapType>(input, 1.0);
+  const auto extents = MeasureLabels(labels);
+  if (extents.empty())
+  {
+    itkGenericExceptionMacro("'" << input << "' has no voxel with a label other than 0: there is no surface");
+  }
+  const auto names =
+    args.Has("label-names") ? ReadLabelNames(args.Get("label-names")) : std::map<unsigned int, std::string>();
+  const auto chosen = ChosenLabels(args, extents);
+  s.byLabel = true;
+  s.label = 1.0; // of each label's crop, a mask
+  std::ostringstream table;
+  table << std::setw(10) << "label" << std::setw(12) << "voxels" << std::setw(10) << "points" << std::setw(10)
+        << "faces"
+        << "  file\n";
+  for (const unsigned int label : chosen)
+  {
+    const auto        found = names.find(label);
+    const std::string name = found != names.end() ? found->second : std::string();
+    const std::string path = LabelOutputName(output, label, name);
+    std::cerr << "label " << label << (name.empty() ? "" : " (" + name + ")") << ": " << extents.at(label).voxels
+              << " voxels\n";
+    const auto mask = CropLabelMask(labels, label, extents.at(label));
+    const auto mesh = RunSurfaceNets(mask.GetPointer(), s);
+    WriteMeshFile(mesh.GetPointer(), path, writeSettings);
+    table << std::setw(10) << label << std::setw(12) << extents.at(label).voxels << std::setw(10)
+          << mesh->GetNumberOfPoints() << std::setw(10) << mesh->GetNumberOfCells() << "  " << path << '\n';
+    if (args.Has("report"))
+    {
+      ReportOnMesh(args, mesh, nullptr, path);
+    }
+  }
+  std::cout << chosen.size() << " labels of " << extents.size() << " in " << input << ":\n" << table.str();
+  return 0;
+}
+
 int
 RunExtract(const Arguments & args)
 {
@@ -430,6 +670,20 @@ RunExtract(const Arguments & args)
   RequireNotAnInput(output, inputs, "OUTPUT");
   const MeshWriteSettings writeSettings = ReadMeshWriteSettings(args);
   RequireNotAnInput(args.Get("report-json"), inputs, "--report-json");
+  if (args.Has("all-labels") || args.Has("label-list"))
+  {
+    if (fromPhantom || args.Has("labels") || args.Has("label") || args.Has("iso") || args.Has("report-json"))
+    {
+      throw UsageError("--all-labels and --label-list take a label map as INPUT, without --phantom, --labels, "
+                       "--label, --iso or --report-json");
+    }
+    ReadMeshingOptions(args, s);
+    return RunAllLabels(args, s, writeSettings);
+  }
+  if (args.Has("label-names"))
+  {
+    throw UsageError("--label-names goes with --all-labels or --label-list");
+  }
   ReadObjectOptions(args, fromPhantom, s);
   ReadMeshingOptions(args, s);
 
@@ -529,6 +783,16 @@ MakeExtractCommand()
       "FILE",
       "segmentation (integer labels, 0 to 2^32 - 1) whose --label voxels give the net, relaxed toward INPUT's "
       "iso-surface",
+      "" },
+    { "all-labels",
+      "",
+      "INPUT is a label map: one closed surface per non-zero label, written as OUTPUT-<label>[-<name>].<ext> "
+      "(each from its own voxels; neighbours' shared boundaries are not shared faces)",
+      "" },
+    { "label-list", "L,L,...", "--all-labels for these labels only", "" },
+    { "label-names",
+      "FILE",
+      "names for the files from a colour table (3D Slicer .ctbl, or an ITK-SNAP label description)",
       "" },
     { "phantom", "NAME", "extract from a built-in phantom instead of INPUT (see 'phantom list')", "" },
     { "relaxation", "MODE", "auto, none, sna, gradient or snert", "auto: snert, or sna for labels" },
