@@ -6,6 +6,10 @@ pinned in requirements.txt) against the module's SNA and high-quality mode on th
   python benchmark/peers/compare-labels.py --meshextraction build/examples/meshextraction \\
       --benchmarks build/benchmark/MeshExtractionBenchmarks [--sizes 128 256] [--out DIR]
 
+A second table: a synthetic map of 100 labels (Voronoi cells in a ball, --many-labels N, 256³
+by default): VTK's filters over all labels in one pass against the module's
+`extract --all-labels` (one closed surface per label, each checked valid).
+
 Masks: the module's sphere phantom (`phantom sphere --image-mode mask`, radius 0.3 N, 1 mm
 voxels). Every mesh is measured by one tool, `meshextraction quality`, against the exact sphere:
 q_angle, q_area, vertex error mean/max (voxels), enclosed volume against the voxel count, and
@@ -18,6 +22,7 @@ runs the same filter on the same sphere with 1 and 2 work units.
 import argparse
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -111,6 +116,79 @@ def module_times(benchmarks, sizes):
     return times
 
 
+def voronoi_labels(n, count, seed=1):
+    """`count` labels: the Voronoi cells of random seeds, inside a ball of radius 0.4 n."""
+    rng = np.random.default_rng(seed)
+    seeds = rng.uniform(0.15 * n, 0.85 * n, (count, 3))
+    z, y, x = np.mgrid[:n, :n, :n].astype(np.float32)
+    best = np.full((n, n, n), np.inf, np.float32)
+    labels = np.zeros((n, n, n), np.uint16)
+    for i, (sx, sy, sz) in enumerate(seeds):
+        d = (x - sx) ** 2 + (y - sy) ** 2 + (z - sz) ** 2
+        closer = d < best
+        best[closer] = d[closer]
+        labels[closer] = i + 1
+    c = 0.5 * (n - 1)
+    labels[(x - c) ** 2 + (y - c) ** 2 + (z - c) ** 2 > (0.4 * n) ** 2] = 0
+    return labels
+
+
+def write_mha(path, a):
+    with open(path, "wb") as f:
+        f.write("ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+                "ElementSpacing = 1 1 1\nOffset = 0 0 0\nDimSize = {} {} {}\nElementType = MET_USHORT\n"
+                "ElementDataFile = LOCAL\n".format(a.shape[2], a.shape[1], a.shape[0]).encode())
+        f.write(np.ascontiguousarray(a, np.uint16).tobytes())
+
+
+def many_labels(tool, workdir, n, count, runs):
+    """The synthetic label map: VTK's filters over every label at once, and the module's
+    extract --all-labels (one surface per label; the command's wall-clock time, reading and
+    writing included), each surface checked by `quality --require-valid`."""
+    labels = voronoi_labels(n, count)
+    present = [int(v) for v in np.unique(labels) if v > 0]
+    path = os.path.join(workdir, "voronoi{}.mha".format(n))
+    write_mha(path, labels)
+    image = vtk_image(labels)
+    print("\n{} labels (Voronoi cells in a ball), {}³:\n".format(len(present), n))
+    print("| method | ms 1 thread / 2 | triangles | per-label surfaces valid |")
+    print("|---|---|---|---|")
+    vtk.vtkSMPTools.SetBackend("STDThread")
+    for name in ("vtkSurfaceNets3D", "vtkDiscreteFlyingEdges3D"):
+        times = []
+        for threads in (1, 2):
+            vtk.vtkSMPTools.Initialize(threads)
+            best = None
+            for run in range(max(1, runs // 5)):
+                f = vtk.vtkSurfaceNets3D() if name == "vtkSurfaceNets3D" else vtk.vtkDiscreteFlyingEdges3D()
+                f.SetInputData(image)
+                for k, value in enumerate(present):
+                    f.SetValue(k, value)
+                start = time.perf_counter()
+                f.Update()
+                elapsed = 1000.0 * (time.perf_counter() - start)
+                best = elapsed if best is None else min(best, elapsed)
+            times.append(best)
+        print("| {} (VTK {}, one pass) | {:.0f} / {:.0f} | {} | not measured |".format(
+            name, vtk.vtkVersion.GetVTKVersion(), times[0], times[1], f.GetOutput().GetNumberOfCells()))
+    for quality in ("standard", "high"):
+        out = os.path.join(workdir, "voronoi-" + quality)
+        os.makedirs(out, exist_ok=True)
+        times = []
+        for threads in (1, 2):
+            start = time.perf_counter()
+            subprocess.run([tool, "extract", path, os.path.join(out, "v.vtp"), "--all-labels", "--quality", quality,
+                            "--threads", str(threads)], check=True, capture_output=True)
+            times.append(1000.0 * (time.perf_counter() - start))
+        meshes = sorted(os.path.join(out, m) for m in os.listdir(out) if m.endswith(".vtp"))
+        check = subprocess.run([tool, "quality"] + meshes + ["--no-self-intersections", "--require-valid"],
+                               capture_output=True, text=True)
+        triangles = sum(int(m.group(1)) for m in re.finditer(r"\), triangles (\d+),", check.stdout))
+        print("| module extract --all-labels --quality {} (whole command) | {:.0f} / {:.0f} | {} | {} of {} |".format(
+            quality, times[0], times[1], triangles or "-", len(meshes) if check.returncode == 0 else "not all",
+            len(meshes)))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--meshextraction", required=True)
@@ -118,6 +196,7 @@ def main():
     parser.add_argument("--sizes", type=int, nargs="+", default=[128, 256])
     parser.add_argument("--runs", type=int, default=10)
     parser.add_argument("--out", default=None, help="folder for the masks, meshes and results.json")
+    parser.add_argument("--many-labels", type=int, default=256, help="size of the 100-label volume (0: none)")
     args = parser.parse_args()
     workdir = args.out or tempfile.mkdtemp(prefix="meshextraction-labels-")
     os.makedirs(workdir, exist_ok=True)
@@ -156,6 +235,8 @@ def main():
               f"{r['volume_vs_voxels_percent']:+.2f} % | {valid} | {r['ms_1']:.1f} / {r['ms_2']:.1f} | "
               f"{r['ms_1'] / r['ms_2']:.2f}x |")
     json.dump(rows, open(os.path.join(workdir, "results.json"), "w"), indent=1)
+    if args.many_labels > 0:
+        many_labels(tool, workdir, args.many_labels, 100, args.runs)
     print(f"\nmeshes and results.json in {workdir}", file=sys.stderr)
 
 
