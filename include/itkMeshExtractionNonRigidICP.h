@@ -44,6 +44,12 @@ struct NonRigidSettings
 {
   std::vector<double> stiffness{ 100.0, 25.0, 6.0, 1.5, 0.4 };
   unsigned int        iterationsPerLevel{ 10 };
+  /** Moves that make triangles cross, fold, turn over or degenerate are undone
+   * (UndoFoldingMoves against the surface of the previous check, every
+   * foldCheckInterval iterations and after the last), so that a template free of
+   * self-intersections stays so. */
+  bool         preventFolds{ true };
+  unsigned int foldCheckInterval{ 5 };
 };
 
 /** The target of non-rigid matches: a closed triangle mesh with its closest-point query
@@ -134,7 +140,9 @@ private:
  * surfaces face the same way; then the local step fits each vertex's rotation of its
  * rest edges and the global step solves (I + alpha L) x = c + alpha b, which minimises
  * sum |x_v - c_v|^2 + alpha/2 sum_v sum_u |(x_v - x_u) - R_v (x0_v - x0_u)|^2 for these
- * pairs and rotations. Returns one point per template vertex, in the target's frame.
+ * pairs and rotations. With NonRigidSettings::preventFolds, the moves of each iteration
+ * that would make the surface cross or fold are undone. Returns one point per template
+ * vertex, in the target's frame.
  * `progress` (optional) receives the fraction done. */
 MeshExtraction_EXPORT std::vector<Vec3>
                       MatchNonRigid(const NonRigidTemplate &            shape,

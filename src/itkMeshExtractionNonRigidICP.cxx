@@ -17,6 +17,7 @@
  *=========================================================================*/
 #include "itkMeshExtractionNonRigidICP.h"
 #include "itkMeshExtractionParallel.h"
+#include "itkMeshExtractionValidityGuard.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itk_eigen.h"
 #include ITK_EIGEN(Dense)
@@ -195,6 +196,10 @@ public:
     m_Surface.points = start;
     m_Surface.triangles = shape.GetTriangles();
     m_Tree.Build(m_Surface);
+    if (shape.GetSettings().preventFolds)
+    {
+      m_Topology = BuildMeshTopology(m_Surface);
+    }
   }
 
   /** One iteration at stiffness level `level`. */
@@ -213,6 +218,14 @@ public:
       rhs[v] = targets[v] + rhs[v] * alpha;
     }
     m_Template.Solve(level, rhs, m_Surface.points);
+  }
+
+  /** The moves since `checkpoint` (a surface free of folds and crossings) that make
+   * triangles cross, fold, turn over or degenerate, undone. */
+  void
+  UndoFoldsSince(const std::vector<Vec3> & checkpoint)
+  {
+    UndoFoldingMoves(m_Surface, m_Topology, checkpoint, ValidityThresholds::DegenerateQAreaTolerance);
   }
 
   const std::vector<Vec3> &
@@ -363,7 +376,8 @@ private:
   const NonRigidTemplate &     m_Template;
   const NonRigidTarget &       m_Target;
   const std::vector<Vec3>      m_Rest;
-  IndexedTriangleMesh          m_Surface; ///< the template where it is now
+  IndexedTriangleMesh          m_Surface;  ///< the template where it is now
+  MeshTopology                 m_Topology; ///< the template's, for the fold check
   TriangleAABBTree             m_Tree;
   std::vector<std::uint32_t>   m_ForwardHints, m_BackwardHints;
   std::vector<Vec3>            m_TriangleNormals, m_VertexNormals;
@@ -389,14 +403,23 @@ MatchNonRigid(const NonRigidTemplate &            shape,
   const auto &      settings = shape.GetSettings();
   const std::size_t total = settings.stiffness.size() * settings.iterationsPerLevel;
   std::size_t       done = 0;
+  std::vector<Vec3> checkpoint = start;
   for (std::size_t level = 0; level < settings.stiffness.size(); ++level)
   {
     for (unsigned int iteration = 0; iteration < settings.iterationsPerLevel; ++iteration)
     {
       match.Iterate(level);
+      ++done;
+      // The fold check every few iterations (and after the last), against the surface
+      // of the previous check: each check searches the whole surface.
+      if (settings.preventFolds && (done % std::max(1u, settings.foldCheckInterval) == 0 || done == total))
+      {
+        match.UndoFoldsSince(checkpoint);
+        checkpoint = match.GetPoints();
+      }
       if (progress)
       {
-        progress(static_cast<double>(++done) / static_cast<double>(total));
+        progress(static_cast<double>(done) / static_cast<double>(total));
       }
     }
   }

@@ -16,6 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionShapeModelBuilder.h"
+#include "itkMeshExtractionValidityGuard.h"
 
 #include <cmath>
 #include <memory>
@@ -371,8 +372,19 @@ private:
   {
     const Shape                mean = Mean(m_InTemplateFrame);
     const SimilarityParameters gauge = AlignShape(mean, m_Template.points, true);
-    const Shape                next = ApplySimilarity(gauge, mean);
-    const double               change = RMSDistance(next, m_Template.points);
+    Shape                      next = ApplySimilarity(gauge, mean);
+    if (m_NonRigid && m_NonRigid->GetSettings().preventFolds)
+    {
+      // The mean of surfaces free of self-intersections need not be: where it crosses or
+      // folds, the old template's points stay.
+      IndexedTriangleMesh renewed;
+      renewed.points = next;
+      renewed.triangles = m_Template.triangles;
+      UndoFoldingMoves(
+        renewed, BuildMeshTopology(renewed), m_Template.points, ValidityThresholds::DegenerateQAreaTolerance);
+      next = renewed.points;
+    }
+    const double change = RMSDistance(next, m_Template.points);
     m_Template.points = next;
     const SimilarityParameters inverse = gauge.Inverse();
     for (auto & transform : m_Transforms)
