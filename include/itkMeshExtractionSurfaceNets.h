@@ -118,6 +118,11 @@ enum class QuadSplit : std::uint8_t
   KeepQuads
 };
 
+/** Each coordinate of `points[0 .. numberOfPoints)` rounded to float: what a mesh of
+ * float coordinates stores. */
+MeshExtraction_EXPORT void
+RoundToFloat(Vec3 * points, std::size_t numberOfPoints);
+
 /** Node positions in physical space: origin + matrix * index, rounded to float when
  * the output mesh stores float coordinates (so that checks see what is written),
  * into `physical[0 .. numberOfPoints)`. */

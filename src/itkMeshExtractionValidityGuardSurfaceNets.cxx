@@ -473,13 +473,7 @@ MakeFacesToCheck(const SurfaceNet &                               net,
   {
     // The points as ToPhysical with roundToFloat makes them: the face split's, each
     // coordinate rounded (not computed a second time).
-    for (auto & p : points)
-    {
-      for (unsigned int d = 0; d < 3; ++d)
-      {
-        p[d] = static_cast<double>(static_cast<float>(p[d]));
-      }
-    }
+    RoundToFloat(points.data(), points.size());
   }
   mesh.points = std::move(points);
   mesh.triangles.resize(polygons.size());

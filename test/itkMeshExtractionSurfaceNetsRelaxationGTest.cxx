@@ -19,6 +19,7 @@
 // node's step along the trilinear field, the Gaussian-derivative gradients.
 
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
+#include "itkMeshExtractionSurfaceNets.h"
 #include "itkImageRegionIteratorWithIndex.h"
 #include "itkSurfaceNetsImageToMeshFilterEnums.h"
 #include "itkMeshExtractionTestHelpers.h"
@@ -35,6 +36,45 @@ namespace
 {
 using FloatImage = itk::Image<float, 3>;
 } // namespace
+
+TEST(SurfaceNets, ToPhysicalRoundsEveryCoordinateToFloatForAnyNumberOfPoints)
+{
+  // Every coordinate, for one point as for many: g++ 12 once rounded only the last
+  // coordinate of a point when it was given few points.
+  namespace ME = itk::MeshExtraction;
+  itk::Matrix<double, 3, 3> M;
+  M.SetIdentity();
+  M[0][0] = 0.857412;
+  M[1][1] = 1.0471;
+  M[2][2] = 1.3085;
+  M[0][1] = 0.01;
+  ME::Vec3 origin;
+  origin[0] = 0.1;
+  origin[1] = -0.2;
+  origin[2] = 0.3;
+  for (std::size_t n : { 1u, 2u, 3u, 4u, 5u, 17u })
+  {
+    std::vector<ME::Vec3> index(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      index[i][0] = 2.99 + 0.1234567 * static_cast<double>(i);
+      index[i][1] = 3.7520303932506032 - 0.3 * static_cast<double>(i);
+      index[i][2] = -0.31102377518801833 + 0.7 * static_cast<double>(i);
+    }
+    std::vector<ME::Vec3> exact(n);
+    std::vector<ME::Vec3> rounded(n);
+    ME::detail::ToPhysical(index.data(), n, origin, M, false, exact.data());
+    ME::detail::ToPhysical(index.data(), n, origin, M, true, rounded.data());
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      for (unsigned int r = 0; r < 3; ++r)
+      {
+        EXPECT_EQ(rounded[i][r], static_cast<double>(static_cast<float>(exact[i][r])))
+          << n << " points, point " << i << " coordinate " << r;
+      }
+    }
+  }
+}
 
 TEST(SurfaceNetsRelaxation, ANodeOutsideItsCellStepsAlongTheTrilinearFieldOfTheCellItIsIn)
 {
