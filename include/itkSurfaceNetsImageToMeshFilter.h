@@ -256,6 +256,18 @@ public:
    * which moves every node inward on convex parts. Unused for greyscale input. */
   itkSetMacro(LabelSurfaceSigma, double);
   itkGetConstMacro(LabelSurfaceSigma, double);
+  /** In the high-quality mode, remesh locally around the slivers the rounds leave
+   * (default on): one node per cell cannot mend a needle between two nodes pinned near
+   * a shared cell face, nor the thin triangles around a node of valence 3. Around each
+   * triangle whose q_angle is below 0.3 one edge collapse (onto an end or onto the
+   * midpoint projected onto the iso-surface), edge swap or node move onto the
+   * iso-surface is made, the one that raises the smallest q_angle there the most, under
+   * the same guards as the rounds (2-manifold and closed, no fold, no turned or
+   * degenerate triangle, no crossing, no collapsed component). The output then has
+   * fewer nodes than the net (GetSurfaceNet()). See GetNumberOfCollapses. */
+  itkSetMacro(HighQualitySliverRemoval, bool);
+  itkGetConstMacro(HighQualitySliverRemoval, bool);
+  itkBooleanMacro(HighQualitySliverRemoval);
   /** Undo relaxation where faces would cross (default on): nodes of crossing
    * faces move back toward their cell centres until the mesh is free of
    * self-intersections (see GetNumberOfNodesMovedBack). */
@@ -308,6 +320,11 @@ public:
    * (those that swapped and relaxed; the last relaxation not counted). */
   itkGetConstMacro(NumberOfSwaps, SizeValueType);
   itkGetConstMacro(NumberOfRoundsPerformed, unsigned int);
+  /** After Update() with HighQualitySliverRemoval: edges collapsed, edges swapped and
+   * nodes moved around slivers (kept after the checks). */
+  itkGetConstMacro(NumberOfCollapses, SizeValueType);
+  itkGetConstMacro(NumberOfSliverSwaps, SizeValueType);
+  itkGetConstMacro(NumberOfSliverMoves, SizeValueType);
 
   /** After Update(): the net itself (nodes in continuous index space, quads, links). */
   const MeshExtraction::SurfaceNet &
@@ -344,6 +361,10 @@ protected:
   void
   RunHighQualityMode(std::vector<MeshExtraction::TriangleIndices> & triangles,
                      MeshExtraction::detail::SurfaceNetsCellCache * cellCache);
+  /** Stage 6's end (HighQualitySliverRemoval): local remeshing around the slivers
+   * (MeshExtraction::detail::RemoveSlivers), onto the surface the relaxation fits. */
+  void
+  RemoveSlivers(std::vector<MeshExtraction::TriangleIndices> & triangles);
   /** Stage 8: the faces (node indices) with the nodes in physical space, into the
    * output mesh. `points`: the nodes' physical points if already made (the face
    * split made them), else null. `keptPoints`: the nodes the faces use, new index ->
@@ -377,6 +398,7 @@ private:
     std::vector<MeshExtraction::Vec3>                              checkedPoints; ///< stage 4's
     MeshExtraction::LargeBlockVector<MeshExtraction::Vec3>         points;        ///< stage 5's
     bool movedNodes{ false };              ///< the high-quality stage moved the nodes after the faces were made
+    bool removedNodes{ false };            ///< the sliver removal left nodes in no face
     std::vector<std::uint32_t> keptPoints; ///< stage 7's: the nodes left (new -> old), empty if all are
 
     /** The points of the final positions, or null where none were made. */
@@ -442,6 +464,10 @@ private:
   /** Stage 7 (MinimumComponentVolume): small components out of the faces. */
   void
   RemoveSmallComponents(Faces & faces);
+  /** After stage 7: where the sliver removal left nodes in no face and stage 7 did not
+   * renumber the faces, the faces renumbered onto the nodes they use (keptPoints). */
+  void
+  DropUnusedNodes(Faces & faces);
   /** Stage 8's parts: the points, and the cells of an itk::Mesh. */
   void
   MakeOutputPoints(const MeshExtraction::Vec3 * points, const std::vector<std::uint32_t> * keptPoints);
@@ -492,6 +518,7 @@ private:
   double            m_MinimumComponentVolume{ 0.0 };
   bool              m_ResampleToIsotropicVoxels{ false };
   double            m_LabelSurfaceSigma{ 2.0 };
+  bool              m_HighQualitySliverRemoval{ true };
 
   using LabelSurfaceImageType = Image<float, 3>;
   LabelSurfaceImageType::Pointer m_LabelSurface; // while GenerateData runs (MakeLabelSurface)
@@ -508,6 +535,9 @@ private:
   SizeValueType m_NumberOfFacesRemoved{ 0 };
   SizeValueType m_NumberOfSwaps{ 0 };
   unsigned int  m_NumberOfRoundsPerformed{ 0 };
+  SizeValueType m_NumberOfCollapses{ 0 };
+  SizeValueType m_NumberOfSliverSwaps{ 0 };
+  SizeValueType m_NumberOfSliverMoves{ 0 };
 
   MeshExtraction::SurfaceNet m_Net;
 };

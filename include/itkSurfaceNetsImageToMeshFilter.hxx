@@ -26,6 +26,7 @@
 #include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshExtractionLabelSurface.h"
 #include "itkMeshExtractionSurfaceNetsHighQuality.h"
+#include "itkMeshExtractionSliverRemoval.h"
 #include "itkMeshExtractionSurfaceNetsRelaxation.h"
 #include "itkMeshExtractionTriangleAABBTree.h"
 #include "itkMinimumMaximumImageCalculator.h"
@@ -647,6 +648,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::GenerateDat
   this->RunHighQualityStage(faces, cellCache); // 6
   this->UpdateProgress(0.85f);
   this->RemoveSmallComponents(faces); // 7
+  this->DropUnusedNodes(faces);
   this->MakeOutputMesh(faces.polygons,
                        faces.polygonSize,
                        faces.PhysicalPoints(),
@@ -879,11 +881,108 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
     triangles[f] = { faces.polygons[f][0], faces.polygons[f][1], faces.polygons[f][2] };
   }
   this->RunHighQualityMode(triangles, &cellCache);
+  m_NumberOfCollapses = 0;
+  m_NumberOfSliverSwaps = 0;
+  m_NumberOfSliverMoves = 0;
+  if (m_HighQualitySliverRemoval)
+  {
+    this->RemoveSlivers(triangles);
+    faces.removedNodes = m_NumberOfCollapses > 0;
+    faces.polygons.resize(triangles.size());
+  }
   for (std::size_t f = 0; f < faces.polygons.size(); ++f)
   {
     faces.polygons[f] = { triangles[f][0], triangles[f][1], triangles[f][2], 0 };
   }
   faces.movedNodes = true; // their points are made anew
+}
+
+namespace MeshExtraction
+{
+namespace detail
+{
+/** Projects a continuous index onto the iso-surface of the sampler's trilinear
+ * interpolation (where the high-quality relaxation puts the nodes) by Newton steps
+ * along the interpolated gradient, each at most half a voxel; false where that does not
+ * come within `tolerance` of the iso-value, or goes further than a voxel. */
+template <typename TSampler>
+bool
+ProjectOntoIsoSurface(const TSampler & sampler, double isoValue, Vec3 & index)
+{
+  constexpr unsigned int NewtonSteps = 8;
+  constexpr double       MaximumStep = 0.5;
+  constexpr double       MaximumDistance = 1.0;
+  const Vec3             start = index;
+  Vec3                   x = index;
+  double                 f = sampler.Interpolate(x) - isoValue;
+  const double           tolerance = 1e-6 * (std::abs(f) + std::abs(isoValue) + 1e-12);
+  for (unsigned int k = 0; k < NewtonSteps && std::abs(f) > tolerance; ++k)
+  {
+    const Vec3   g = sampler.Gradient(x);
+    const double gg = SquaredNorm(g);
+    if (!(gg > 0.0) || !std::isfinite(gg))
+    {
+      return false;
+    }
+    Vec3         step = g * (-f / gg);
+    const double length = Norm(step);
+    if (length > MaximumStep)
+    {
+      step *= MaximumStep / length;
+    }
+    x += step;
+    f = sampler.Interpolate(x) - isoValue;
+  }
+  if (!(std::abs(f) <= 1e-3 * (std::abs(sampler.Interpolate(start) - isoValue) + tolerance) + tolerance) ||
+      SquaredNorm(x - start) > MaximumDistance * MaximumDistance)
+  {
+    return false;
+  }
+  index = x;
+  return true;
+}
+} // namespace detail
+} // namespace MeshExtraction
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSlivers(
+  std::vector<MeshExtraction::TriangleIndices> & triangles)
+{
+  using namespace MeshExtraction;
+  using namespace MeshExtraction::detail;
+  Matrix<double, 3, 3> M;
+  Vec3                 first;
+  this->GetGeometry(M, first);
+  SliverRemovalParameters parameters;
+  parameters.degenerateQAreaTolerance = ValidityThresholds::HighQualityDegenerateQAreaTolerance;
+  parameters.roundToFloat = RoundsToFloat;
+  SliverRemovalResult result;
+  if (m_LabelSurface)
+  {
+    const SurfaceNetsSampler<LabelSurfaceImageType> target(m_LabelSurface.GetPointer(), 0.0, 1.0);
+    const SurfaceProjection project = [&target](Vec3 & index) { return ProjectOntoIsoSurface(target, 0.0, index); };
+    result = MeshExtraction::detail::RemoveSlivers(m_Net.positions, triangles, first, M, project, parameters);
+  }
+  else if (m_ClassifyByLabel)
+  {
+    // The label surface is only averaged (LabelSurfaceSigma 0): no surface to project
+    // onto, so nodes stay where they are and collapses keep an end.
+    result = MeshExtraction::detail::RemoveSlivers(m_Net.positions, triangles, first, M, nullptr, parameters);
+  }
+  else
+  {
+    const SurfaceNetsSampler<InputImageType> sampler(
+      this->GetSampledInput(), m_IsoValue, m_InsideIsAboveIsoValue ? -1.0 : 1.0);
+    const double            iso = m_IsoValue;
+    const SurfaceProjection project = [&sampler, iso](Vec3 & index) {
+      return ProjectOntoIsoSurface(sampler, iso, index);
+    };
+    result = MeshExtraction::detail::RemoveSlivers(m_Net.positions, triangles, first, M, project, parameters);
+  }
+  m_NumberOfCollapses = result.numberOfCollapses;
+  m_NumberOfSliverSwaps = result.numberOfSwaps;
+  m_NumberOfSliverMoves = result.numberOfMoves;
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -926,6 +1025,40 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSmall
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
 void
+SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::DropUnusedNodes(Faces & faces)
+{
+  if (!faces.removedNodes || !faces.keptPoints.empty())
+  {
+    return; // every node is in a face, or stage 7 renumbered the faces onto those that are
+  }
+  constexpr std::uint32_t    unused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> newIndex(m_Net.positions.size(), unused);
+  for (const auto & q : faces.polygons)
+  {
+    for (unsigned int k = 0; k < faces.polygonSize; ++k)
+    {
+      newIndex[q[k]] = 0;
+    }
+  }
+  for (std::size_t v = 0; v < newIndex.size(); ++v)
+  {
+    if (newIndex[v] != unused)
+    {
+      newIndex[v] = static_cast<std::uint32_t>(faces.keptPoints.size());
+      faces.keptPoints.push_back(static_cast<std::uint32_t>(v));
+    }
+  }
+  for (auto & q : faces.polygons)
+  {
+    for (unsigned int k = 0; k < faces.polygonSize; ++k)
+    {
+      q[k] = newIndex[q[k]];
+    }
+  }
+}
+
+template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
+void
 SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::ReleaseResampledInputs()
 {
   m_SampledInput = nullptr;
@@ -956,6 +1089,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "NumberOfHighQualityRounds: " << m_NumberOfHighQualityRounds << '\n';
   os << indent << "HighQualityIterations: " << m_HighQualityIterations << '\n';
   os << indent << "HighQualityCellDilation: " << m_HighQualityCellDilation << '\n';
+  os << indent << "HighQualitySliverRemoval: " << m_HighQualitySliverRemoval << '\n';
   os << indent << "MinimumComponentVolume: " << m_MinimumComponentVolume << '\n';
   os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
   os << indent << "LabelSurfaceSigma: " << m_LabelSurfaceSigma << '\n';

@@ -89,6 +89,24 @@ TEST(SurfaceNetsImageToMeshFilter, RealHeadCTGivesValidSurfacesAndHighQualityBea
   EXPECT_GT(q.qArea.mean, plain.qArea.mean + 0.05);  // measured 0.886 vs 0.796
   EXPECT_GT(q.qAngle.mean, plain.qAngle.mean + 0.1); // measured 0.563 vs 0.424
   EXPECT_LT(q.fractionQAngleBelow03, 0.5 * plain.fractionQAngleBelow03);
+
+  // The sliver removal (on by default): on 3.2 x 3.2 x 1.5 mm voxels the rounds leave
+  // many needles between nodes pinned near shared cell faces; the local remeshing takes
+  // away more than half of them (measured 5.54 % -> 1.70 % below q_angle 0.3), keeping
+  // the topology and the validity.
+  auto without = itk::SurfaceNetsImageToMeshFilter<ShortImage>::New();
+  without->SetInput(image);
+  without->SetIsoValue(1150);
+  without->SetHighQuality(true);
+  without->SetHighQualitySliverRemoval(false);
+  without->Update();
+  const auto w = Analyze(without->GetOutput());
+  EXPECT_TRUE(w.IsValidClosedSurface()) << Describe(w);
+  EXPECT_GT(high->GetNumberOfCollapses(), 0u);
+  EXPECT_EQ(q.connectedComponents, w.connectedComponents);
+  EXPECT_LT(q.fractionQAngleBelow03, 0.5 * w.fractionQAngleBelow03);
+  EXPECT_GT(q.qAngle.mean, w.qAngle.mean + 0.01); // measured 0.594 vs 0.579
+  EXPECT_GT(q.qAngle.minimum, w.qAngle.minimum);
 }
 
 // Real data, when ../shared/data is next to the project: the small VTK head CT (bone

@@ -65,6 +65,7 @@ struct ExtractSettings
   double                          convergedSwaps{};
   double                          cellDilation{};
   double                          labelSigma{};
+  bool                            sliverRemoval{};
   bool                            isotropic{};
   double                          minimumComponentVolume{};
 };
@@ -89,6 +90,7 @@ ExtractDefaults()
   s.convergedSwaps = filter->GetConvergedSwapFraction();
   s.cellDilation = filter->GetHighQualityCellDilation();
   s.labelSigma = filter->GetLabelSurfaceSigma();
+  s.sliverRemoval = filter->GetHighQualitySliverRemoval();
   s.isotropic = filter->GetResampleToIsotropicVoxels();
   s.minimumComponentVolume = filter->GetMinimumComponentVolume();
   return s;
@@ -153,6 +155,7 @@ ConfigureFilter(TFilter * filter, const ExtractSettings & s)
   filter->SetConvergedSwapFraction(s.convergedSwaps);
   filter->SetHighQualityCellDilation(s.cellDilation);
   filter->SetLabelSurfaceSigma(s.labelSigma);
+  filter->SetHighQualitySliverRemoval(s.sliverRemoval);
   filter->SetResampleToIsotropicVoxels(s.isotropic);
   double minimumVolume = s.minimumComponentVolume;
   if (s.minimumComponentVoxels > 0.0)
@@ -195,6 +198,11 @@ PrintFilterSummary(const TFilter * filter, const ExtractSettings & s, const Stop
   {
     std::cerr << ", " << filter->GetNumberOfSwaps() << " swaps in " << filter->GetNumberOfRoundsPerformed()
               << " rounds";
+    if (s.sliverRemoval)
+    {
+      std::cerr << ", slivers: " << filter->GetNumberOfCollapses() << " collapses, "
+                << filter->GetNumberOfSliverSwaps() << " swaps, " << filter->GetNumberOfSliverMoves() << " moves";
+    }
   }
   if (filter->GetMinimumComponentVolume() > 0.0)
   {
@@ -386,6 +394,12 @@ ReadMeshingOptions(const Arguments & args, ExtractSettings & s)
   s.convergedSwaps = args.GetDouble("converged-swaps", s.convergedSwaps); // the filter checks the range
   s.cellDilation = args.GetDouble("cell-dilation", s.cellDilation);       // so does this one
   s.labelSigma = args.GetDouble("label-sigma", s.labelSigma);             // and this one
+  const std::string sliverMode = args.Get("sliver-removal", s.sliverRemoval ? "on" : "off");
+  if (sliverMode != "on" && sliverMode != "off")
+  {
+    throw UsageError("--sliver-removal must be on or off, got '" + sliverMode + "'");
+  }
+  s.sliverRemoval = sliverMode == "on";
   s.isotropic = s.isotropic || args.Has("isotropic");
   s.threads = NonNegative(args, "threads", 0);
   SetDicomSeries(args.Get("series"));
@@ -820,6 +834,10 @@ MakeExtractCommand()
       "--quality high on a label image: fit the surface to the voxels' smoothed signed distance at this scale in "
       "voxels (0: average only, which shrinks it)",
       DefaultText(defaults.labelSigma) },
+    { "sliver-removal",
+      "on|off",
+      "--quality high: collapse, swap or move around the triangles with q_angle below 0.3 that the rounds leave",
+      defaults.sliverRemoval ? "on" : "off" },
     { "isotropic",
       "",
       "resample to cubic voxels of the smallest spacing first: better shaped, more triangles on anisotropic voxels",

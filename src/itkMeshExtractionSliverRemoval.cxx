@@ -1,0 +1,822 @@
+/*=========================================================================
+ *
+ *  Copyright NumFOCUS
+ *
+ *  Licensed under the Apache License, Version 2.0 (the "License");
+ *  you may not use this file except in compliance with the License.
+ *  You may obtain a copy of the License at
+ *
+ *         https://www.apache.org/licenses/LICENSE-2.0.txt
+ *
+ *  Unless required by applicable law or agreed to in writing, software
+ *  distributed under the License is distributed on an "AS IS" BASIS,
+ *  WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+ *  See the License for the specific language governing permissions and
+ *  limitations under the License.
+ *
+ *=========================================================================*/
+#include "itkMeshExtractionSliverRemoval.h"
+
+#include "itkMeshExtractionSelfIntersections.h"
+#include "itkMeshExtractionSurfaceNets.h"
+#include "itkMeshExtractionTriangleGeometry.h"
+#include "itkMeshExtractionValidityGuard.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace itk
+{
+namespace MeshExtraction
+{
+namespace detail
+{
+namespace
+{
+/** A changed triangle may turn at most this far (cosine of the angle) from the one it
+ * replaces: an operation reshapes the surface's triangles, it must not reshape the
+ * surface. */
+constexpr double ReplacementCosine = 0.2;
+/** An operation is made only if it raises the smallest q_angle of the triangles it
+ * changes by more than this. */
+constexpr double MinimumGain = 1e-3;
+
+/** One operation as it can be undone: the triangles, incidence lists and nodes it changed. */
+struct Operation
+{
+  std::vector<std::pair<std::uint32_t, TriangleIndices>>            triangles; ///< slot, old value
+  std::vector<std::pair<std::uint32_t, bool>>                       alive;     ///< slot, old flag
+  std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> incident;  ///< node, old list
+  std::vector<std::pair<std::uint32_t, std::pair<Vec3, Vec3>>>      nodes;     ///< node, old index / physical
+  std::vector<std::uint32_t>                                        changed;   ///< alive slots it made
+  std::vector<std::uint32_t>                                        dead;      ///< slots it removed
+};
+
+enum class Kind : std::uint8_t
+{
+  Collapse,
+  Swap,
+  Move
+};
+
+struct Candidate
+{
+  Kind          kind;
+  std::uint32_t a;
+  std::uint32_t b; ///< the other end of the edge (Collapse, Swap)
+  Vec3          index;
+  double        score;
+};
+
+class SliverRemover
+{
+public:
+  SliverRemover(LargeBlockVector<Vec3> &         positions,
+                std::vector<TriangleIndices> &   triangles,
+                const Vec3 &                     origin,
+                const Matrix<double, 3, 3> &     indexToPhysical,
+                const SurfaceProjection &        project,
+                const SliverRemovalParameters & parameters)
+    : m_Index(positions)
+    , m_Output(triangles)
+    , m_Physical(m_Check.points)
+    , m_Triangles(m_Check.triangles)
+    , m_Origin(origin)
+    , m_M(indexToPhysical)
+    , m_Project(project)
+    , m_Parameters(parameters)
+  {
+    m_Check.triangles.swap(triangles);
+    m_Physical.resize(m_Index.size());
+    ToPhysical(m_Index.data(), m_Index.size(), m_Origin, m_M, m_Parameters.roundToFloat, m_Physical.data());
+    m_Boxes.resize(m_Triangles.size());
+    for (std::uint32_t f = 0; f < m_Triangles.size(); ++f)
+    {
+      m_Boxes[f] = TriangleBox(m_Check, f);
+    }
+    m_Tree.Build(m_Check, nullptr, &m_Boxes);
+    m_Owner.assign(m_Triangles.size(), -1);
+    m_Alive.assign(m_Triangles.size(), true);
+    m_Incident.resize(m_Index.size());
+    for (std::uint32_t f = 0; f < m_Triangles.size(); ++f)
+    {
+      for (std::uint32_t v : m_Triangles[f])
+      {
+        m_Incident[v].push_back(f);
+      }
+    }
+    m_Volumes.Initialize(m_Triangles, m_Physical);
+    m_Lock.assign(m_Index.size(), 0);
+  }
+
+  SliverRemovalResult
+  Run()
+  {
+    for (unsigned int pass = 0; pass < m_Parameters.maximumNumberOfPasses; ++pass)
+    {
+      ++m_Stamp;
+      m_Operations.clear();
+      this->OperateAroundSlivers(m_Parameters.sliverQAngle);
+      ++m_Result.numberOfPasses;
+      if (m_Operations.empty())
+      {
+        break;
+      }
+      this->UndoInvalidOperations();
+    }
+    this->Compact();
+    return m_Result;
+  }
+
+private:
+  // --- geometry ---
+  Vec3
+  ToPhysicalPoint(const Vec3 & index) const
+  {
+    Vec3 p;
+    ToPhysical(&index, 1, m_Origin, m_M, m_Parameters.roundToFloat, &p);
+    return p;
+  }
+  double
+  QAngle(std::uint32_t f) const
+  {
+    const auto & t = m_Triangles[f];
+    return MeasureTriangle(m_Physical[t[0]], m_Physical[t[1]], m_Physical[t[2]]).qAngle;
+  }
+  Vec3
+  Normal(std::uint32_t f) const
+  {
+    const auto & t = m_Triangles[f];
+    return Cross(m_Physical[t[1]] - m_Physical[t[0]], m_Physical[t[2]] - m_Physical[t[0]]);
+  }
+  static Vec3
+  Unit(const Vec3 & v)
+  {
+    const double n = Norm(v);
+    return n > 0.0 ? v * (1.0 / n) : v;
+  }
+
+  // --- connectivity ---
+  /** The alive triangles on the edge (a, b). */
+  std::vector<std::uint32_t>
+  EdgeTriangles(std::uint32_t a, std::uint32_t b) const
+  {
+    std::vector<std::uint32_t> on;
+    for (std::uint32_t f : m_Incident[a])
+    {
+      const auto & t = m_Triangles[f];
+      if (t[0] == b || t[1] == b || t[2] == b)
+      {
+        on.push_back(f);
+      }
+    }
+    return on;
+  }
+  std::vector<std::uint32_t>
+  Neighbours(std::uint32_t v) const
+  {
+    std::vector<std::uint32_t> n;
+    for (std::uint32_t f : m_Incident[v])
+    {
+      for (std::uint32_t w : m_Triangles[f])
+      {
+        if (w != v)
+        {
+          n.push_back(w);
+        }
+      }
+    }
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+    return n;
+  }
+  static std::uint32_t
+  Third(const TriangleIndices & t, std::uint32_t a, std::uint32_t b)
+  {
+    for (std::uint32_t v : t)
+    {
+      if (v != a && v != b)
+      {
+        return v;
+      }
+    }
+    return a;
+  }
+  /** Whether the triangle runs from a to b. */
+  static bool
+  RunsFrom(const TriangleIndices & t, std::uint32_t a, std::uint32_t b)
+  {
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      if (t[k] == a && t[(k + 1) % 3] == b)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // --- operations, applied so that they can be undone ---
+  void
+  SaveIncident(Operation & op, std::uint32_t v) const
+  {
+    for (const auto & saved : op.incident)
+    {
+      if (saved.first == v)
+      {
+        return;
+      }
+    }
+    op.incident.emplace_back(v, m_Incident[v]);
+  }
+  void
+  SetNode(Operation & op, std::uint32_t v, const Vec3 & index)
+  {
+    op.nodes.emplace_back(v, std::make_pair(m_Index[v], m_Physical[v]));
+    m_Index[v] = index;
+    m_Physical[v] = this->ToPhysicalPoint(index);
+  }
+  static void
+  Erase(std::vector<std::uint32_t> & list, std::uint32_t f)
+  {
+    list.erase(std::remove(list.begin(), list.end(), f), list.end());
+  }
+
+  /** Collapses the edge (a, b) onto a at `index`; false (nothing changed) where the mesh
+   * would not stay 2-manifold. */
+  bool
+  ApplyCollapse(Operation & op, std::uint32_t a, std::uint32_t b, const Vec3 & index)
+  {
+    const auto on = this->EdgeTriangles(a, b);
+    if (on.size() != 2)
+    {
+      return false;
+    }
+    const std::uint32_t c = Third(m_Triangles[on[0]], a, b);
+    const std::uint32_t d = Third(m_Triangles[on[1]], a, b);
+    const auto          na = this->Neighbours(a);
+    const auto          nb = this->Neighbours(b);
+    std::vector<std::uint32_t> common;
+    std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
+    // The link condition: a and b share exactly the two nodes across the edge, and
+    // neither of those nor the merged node is left with fewer than three neighbours.
+    if (c == d || common.size() != 2 || this->Neighbours(c).size() <= 3 || this->Neighbours(d).size() <= 3 ||
+        na.size() + nb.size() < 3 + 4)
+    {
+      return false;
+    }
+    for (std::uint32_t v : { a, b, c, d })
+    {
+      this->SaveIncident(op, v);
+    }
+    for (std::uint32_t f : on)
+    {
+      op.alive.emplace_back(f, true);
+      m_Alive[f] = false;
+      for (std::uint32_t v : m_Triangles[f])
+      {
+        Erase(m_Incident[v], f);
+      }
+      op.triangles.emplace_back(f, m_Triangles[f]);
+      m_Triangles[f] = { a, a, a }; // no area, no volume, not a proper face
+      op.dead.push_back(f);
+    }
+    for (std::uint32_t f : m_Incident[b])
+    {
+      op.triangles.emplace_back(f, m_Triangles[f]);
+      for (auto & v : m_Triangles[f])
+      {
+        v = v == b ? a : v;
+      }
+      m_Incident[a].push_back(f);
+    }
+    m_Incident[b].clear();
+    this->SetNode(op, a, index);
+    op.changed = m_Incident[a];
+    return true;
+  }
+
+  /** Swaps the edge (a, b); false where the swapped edge exists or a node would be left
+   * with fewer than three neighbours. */
+  bool
+  ApplySwap(Operation & op, std::uint32_t a, std::uint32_t b)
+  {
+    auto on = this->EdgeTriangles(a, b);
+    if (on.size() != 2)
+    {
+      return false;
+    }
+    if (!RunsFrom(m_Triangles[on[0]], a, b))
+    {
+      std::swap(on[0], on[1]);
+    }
+    const std::uint32_t c = Third(m_Triangles[on[0]], a, b);
+    const std::uint32_t d = Third(m_Triangles[on[1]], a, b);
+    if (c == d || !this->EdgeTriangles(c, d).empty() || this->Neighbours(a).size() <= 3 ||
+        this->Neighbours(b).size() <= 3)
+    {
+      return false;
+    }
+    for (std::uint32_t v : { a, b, c, d })
+    {
+      this->SaveIncident(op, v);
+    }
+    op.triangles.emplace_back(on[0], m_Triangles[on[0]]);
+    op.triangles.emplace_back(on[1], m_Triangles[on[1]]);
+    // (a, b, c) and (b, a, d) become (c, a, d) and (d, b, c): the same orientation.
+    m_Triangles[on[0]] = { c, a, d };
+    m_Triangles[on[1]] = { d, b, c };
+    Erase(m_Incident[b], on[0]);
+    Erase(m_Incident[a], on[1]);
+    m_Incident[d].push_back(on[0]);
+    m_Incident[c].push_back(on[1]);
+    op.changed = { on[0], on[1] };
+    return true;
+  }
+
+  void
+  ApplyMove(Operation & op, std::uint32_t v, const Vec3 & index)
+  {
+    this->SetNode(op, v, index);
+    op.changed = m_Incident[v];
+  }
+
+  void
+  Undo(const Operation & op)
+  {
+    for (auto it = op.nodes.rbegin(); it != op.nodes.rend(); ++it)
+    {
+      m_Index[it->first] = it->second.first;
+      m_Physical[it->first] = it->second.second;
+    }
+    for (auto it = op.triangles.rbegin(); it != op.triangles.rend(); ++it)
+    {
+      m_Triangles[it->first] = it->second;
+    }
+    for (const auto & [f, flag] : op.alive)
+    {
+      m_Alive[f] = flag;
+    }
+    for (const auto & [v, list] : op.incident)
+    {
+      m_Incident[v] = list;
+    }
+  }
+
+  // --- evaluation ---
+  /** The smallest q_angle of `slots` (alive ones). */
+  double
+  MinimumQAngle(const std::vector<std::uint32_t> & slots) const
+  {
+    double q = 1.0;
+    for (std::uint32_t f : slots)
+    {
+      if (m_Alive[f])
+      {
+        q = std::min(q, this->QAngle(f));
+      }
+    }
+    return q;
+  }
+  /** The alive triangles around the nodes of triangle f's neighbourhood that `kind`
+   * changes: what the operation's score is measured against. */
+  std::vector<std::uint32_t>
+  Star(std::initializer_list<std::uint32_t> nodes) const
+  {
+    std::vector<std::uint32_t> star;
+    for (std::uint32_t v : nodes)
+    {
+      star.insert(star.end(), m_Incident[v].begin(), m_Incident[v].end());
+    }
+    std::sort(star.begin(), star.end());
+    star.erase(std::unique(star.begin(), star.end()), star.end());
+    return star;
+  }
+  /** The score of the applied operation (the smallest q_angle it left), or -1 if it left
+   * a degenerate triangle, turned one over against `reference` (the old normals by slot,
+   * or one normal for all) or folded one against a neighbour. */
+  /** The smallest cosine between triangle f's normal and those of its neighbours across
+   * its edges (2 where it has none). */
+  double
+  SharpestFold(std::uint32_t f) const
+  {
+    const auto & t = m_Triangles[f];
+    const Vec3   n = Unit(this->Normal(f));
+    double       sharpest = 2.0;
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      for (std::uint32_t g : this->EdgeTriangles(t[k], t[(k + 1) % 3]))
+      {
+        if (g != f)
+        {
+          sharpest = std::min(sharpest, Dot(n, Unit(this->Normal(g))));
+        }
+      }
+    }
+    return sharpest;
+  }
+  /** The fold an operation on `star` may leave: none sharper than FoldCosine, or than
+   * the sharpest there already. */
+  double
+  FoldLimit(const std::vector<std::uint32_t> & star) const
+  {
+    double sharpest = 2.0;
+    for (std::uint32_t f : star)
+    {
+      sharpest = std::min(sharpest, this->SharpestFold(f));
+    }
+    return std::min(sharpest - 1e-9, ValidityThresholds::FoldCosine);
+  }
+  double
+  Score(const Operation & op, const std::vector<std::pair<std::uint32_t, Vec3>> & reference, const Vec3 & common, double foldLimit) const
+  {
+    double q = 1.0;
+    for (std::uint32_t f : op.changed)
+    {
+      const auto & t = m_Triangles[f];
+      if (TriangleQArea(m_Physical[t[0]], m_Physical[t[1]], m_Physical[t[2]]) <= m_Parameters.degenerateQAreaTolerance)
+      {
+        return -1.0;
+      }
+      const Vec3 n = Unit(this->Normal(f));
+      Vec3       before = common;
+      for (const auto & [slot, normal] : reference)
+      {
+        if (slot == f)
+        {
+          before = normal;
+        }
+      }
+      if (!(Dot(n, before) > ReplacementCosine))
+      {
+        return -1.0;
+      }
+      if (!(this->SharpestFold(f) > foldLimit))
+      {
+        return -1.0;
+      }
+      q = std::min(q, this->QAngle(f));
+    }
+    return q;
+  }
+  std::vector<std::pair<std::uint32_t, Vec3>>
+  Normals(const std::vector<std::uint32_t> & slots) const
+  {
+    std::vector<std::pair<std::uint32_t, Vec3>> normals;
+    for (std::uint32_t f : slots)
+    {
+      normals.emplace_back(f, Unit(this->Normal(f)));
+    }
+    return normals;
+  }
+  /** Applies the candidate; false if it could not be made. */
+  bool
+  Apply(Operation & op, const Candidate & c)
+  {
+    switch (c.kind)
+    {
+      case Kind::Collapse:
+        return this->ApplyCollapse(op, c.a, c.b, c.index);
+      case Kind::Swap:
+        return this->ApplySwap(op, c.a, c.b);
+      case Kind::Move:
+        this->ApplyMove(op, c.a, c.index);
+        return true;
+    }
+    return false;
+  }
+  /** Tries the candidate: its score (-1 if invalid), the mesh unchanged. */
+  double
+  Try(Candidate c)
+  {
+    std::vector<std::uint32_t> star;
+    Vec3                       common = MakeVec3(0, 0, 0);
+    if (c.kind == Kind::Swap)
+    {
+      star = this->EdgeTriangles(c.a, c.b);
+      for (std::uint32_t f : star)
+      {
+        common += this->Normal(f); // area-weighted: a sliver's own normal counts little
+      }
+      common = Unit(common);
+    }
+    else
+    {
+      star = c.kind == Kind::Collapse ? this->Star({ c.a, c.b }) : this->Star({ c.a });
+    }
+    const auto reference = c.kind == Kind::Swap ? std::vector<std::pair<std::uint32_t, Vec3>>() : this->Normals(star);
+    const double foldLimit = this->FoldLimit(star);
+    Operation  op;
+    if (!this->Apply(op, c))
+    {
+      return -1.0;
+    }
+    const double score = this->Score(op, reference, common, foldLimit);
+    this->Undo(op);
+    return score;
+  }
+
+  bool
+  Locked(const std::vector<std::uint32_t> & slots) const
+  {
+    for (std::uint32_t f : slots)
+    {
+      for (std::uint32_t v : m_Triangles[f])
+      {
+        if (m_Lock[v] == m_Stamp)
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+  void
+  Lock(const std::vector<std::uint32_t> & slots)
+  {
+    for (std::uint32_t f : slots)
+    {
+      for (std::uint32_t v : m_Triangles[f])
+      {
+        m_Lock[v] = m_Stamp;
+      }
+    }
+  }
+
+  /** The candidates around sliver f. */
+  std::vector<Candidate>
+  Candidates(std::uint32_t f) const
+  {
+    std::vector<Candidate> candidates;
+    const TriangleIndices  t = m_Triangles[f];
+    for (unsigned int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = t[k];
+      const std::uint32_t b = t[(k + 1) % 3];
+      candidates.push_back({ Kind::Collapse, a, b, m_Index[a], 0.0 });
+      candidates.push_back({ Kind::Collapse, a, b, m_Index[b], 0.0 });
+      Vec3 middle = (m_Index[a] + m_Index[b]) * 0.5;
+      if (m_Project && m_Project(middle))
+      {
+        candidates.push_back({ Kind::Collapse, a, b, middle, 0.0 });
+      }
+      candidates.push_back({ Kind::Swap, a, b, m_Index[a], 0.0 });
+      if (m_Project)
+      {
+        const auto neighbours = this->Neighbours(a);
+        Vec3       centroid = MakeVec3(0, 0, 0);
+        for (std::uint32_t w : neighbours)
+        {
+          centroid += m_Index[w];
+        }
+        centroid *= 1.0 / static_cast<double>(neighbours.size());
+        if (m_Project(centroid))
+        {
+          candidates.push_back({ Kind::Move, a, a, centroid, 0.0 });
+        }
+      }
+    }
+    return candidates;
+  }
+
+  void
+  OperateAroundSlivers(double threshold)
+  {
+    std::vector<std::pair<double, std::uint32_t>> slivers;
+    auto consider = [&](std::uint32_t f) {
+      if (m_Alive[f])
+      {
+        const double q = this->QAngle(f);
+        if (q < threshold)
+        {
+          slivers.emplace_back(q, f);
+        }
+      }
+    };
+    if (m_Stamp == 1)
+    {
+      for (std::uint32_t f = 0; f < m_Triangles.size(); ++f)
+      {
+        consider(f);
+      }
+    }
+    else
+    {
+      // Only the slivers left by the last pass and the triangles it changed.
+      std::sort(m_Worklist.begin(), m_Worklist.end());
+      m_Worklist.erase(std::unique(m_Worklist.begin(), m_Worklist.end()), m_Worklist.end());
+      for (std::uint32_t f : m_Worklist)
+      {
+        consider(f);
+      }
+    }
+    std::sort(slivers.begin(), slivers.end());
+    m_Worklist.clear();
+    for (const auto & sliver : slivers)
+    {
+      m_Worklist.push_back(sliver.second);
+    }
+    for (const auto & [q0, f] : slivers)
+    {
+      if (!m_Alive[f] || this->QAngle(f) >= threshold)
+      {
+        continue; // gone, or mended by an earlier operation
+      }
+      const TriangleIndices t = m_Triangles[f];
+      if (this->Locked(this->Star({ t[0], t[1], t[2] })))
+      {
+        continue;
+      }
+      Candidate best{ Kind::Move, 0, 0, MakeVec3(0, 0, 0), -1.0 };
+      for (Candidate c : this->Candidates(f))
+      {
+        const std::vector<std::uint32_t> star =
+          c.kind == Kind::Swap ? this->EdgeTriangles(c.a, c.b)
+                               : (c.kind == Kind::Collapse ? this->Star({ c.a, c.b }) : this->Star({ c.a }));
+        const double before = this->MinimumQAngle(star);
+        c.score = this->Try(c);
+        if (c.score > before + MinimumGain && c.score > best.score)
+        {
+          best = c;
+        }
+      }
+      if (best.score < 0.0)
+      {
+        continue;
+      }
+      Operation op;
+      this->Apply(op, best);
+      this->Lock(op.changed);
+      for (const auto & saved : op.incident)
+      {
+        m_Lock[saved.first] = m_Stamp;
+      }
+      m_Kinds.push_back(best.kind);
+      m_Operations.push_back(std::move(op));
+    }
+  }
+
+  /** Undoes the operations whose triangles cross others or whose component collapsed,
+   * until none is left. */
+  void
+  UndoInvalidOperations()
+  {
+    std::vector<bool> undone(m_Operations.size(), false);
+    // Components pressed flat or turned inside out.
+    const std::vector<bool> collapsed = m_Volumes.Collapsed(m_Triangles, m_Physical);
+    for (std::size_t i = 0; i < m_Operations.size(); ++i)
+    {
+      for (const auto & saved : m_Operations[i].incident)
+      {
+        const std::uint32_t c = m_Volumes.vertexComponent[saved.first];
+        if (c < collapsed.size() && collapsed[c] && !undone[i])
+        {
+          this->Undo(m_Operations[i]);
+          undone[i] = true;
+        }
+      }
+    }
+    // Crossing faces, again after each undo (an undone operation's old faces are checked
+    // against the operations kept).
+    this->RefitTree();
+    for (unsigned int round = 0; round < ValidityThresholds::MaximumRepairRounds; ++round)
+    {
+      std::vector<std::uint32_t> queries;
+      for (std::size_t i = 0; i < m_Operations.size(); ++i)
+      {
+        if (!undone[i])
+        {
+          for (std::uint32_t f : m_Operations[i].changed)
+          {
+            m_Owner[f] = static_cast<std::int64_t>(i);
+            queries.push_back(f);
+          }
+        }
+      }
+      const auto pairs = FindSelfIntersections(m_Check, queries, m_Tree);
+      bool       any = false;
+      for (const auto & [f, g] : pairs)
+      {
+        for (std::uint32_t h : { f, g })
+        {
+          if (m_Owner[h] >= 0 && !undone[m_Owner[h]])
+          {
+            this->Undo(m_Operations[m_Owner[h]]);
+            undone[m_Owner[h]] = true;
+            any = true;
+          }
+        }
+      }
+      for (std::uint32_t f : queries)
+      {
+        m_Owner[f] = -1;
+      }
+      if (!any)
+      {
+        break;
+      }
+      this->RefitTree();
+    }
+    for (std::size_t i = 0; i < m_Operations.size(); ++i)
+    {
+      if (undone[i])
+      {
+        ++m_Result.numberOfUndone;
+        continue;
+      }
+      m_Worklist.insert(m_Worklist.end(), m_Operations[i].changed.begin(), m_Operations[i].changed.end());
+      switch (m_Kinds[i])
+      {
+        case Kind::Collapse:
+          ++m_Result.numberOfCollapses;
+          break;
+        case Kind::Swap:
+          ++m_Result.numberOfSwaps;
+          break;
+        case Kind::Move:
+          ++m_Result.numberOfMoves;
+          break;
+      }
+    }
+    m_Kinds.clear();
+  }
+
+  /** The tree refitted to the triangles the operations of this pass changed (or that
+   * undoing them restored). */
+  void
+  RefitTree()
+  {
+    for (const Operation & op : m_Operations)
+    {
+      for (const auto & saved : op.triangles)
+      {
+        m_Boxes[saved.first] = TriangleBox(m_Check, saved.first);
+      }
+      for (std::uint32_t f : op.changed)
+      {
+        m_Boxes[f] = TriangleBox(m_Check, f);
+      }
+    }
+    m_Tree.Refit(m_Check, m_Boxes);
+  }
+
+  void
+  Compact()
+  {
+    std::size_t kept = 0;
+    for (std::size_t f = 0; f < m_Triangles.size(); ++f)
+    {
+      if (m_Alive[f])
+      {
+        m_Triangles[kept++] = m_Triangles[f];
+      }
+    }
+    m_Triangles.resize(kept);
+    m_Output.swap(m_Triangles);
+  }
+
+  LargeBlockVector<Vec3> &                m_Index;
+  std::vector<TriangleIndices> &          m_Output;
+  IndexedTriangleMesh                     m_Check; ///< the physical points and the triangles (dead: one node thrice)
+  std::vector<Vec3> &                     m_Physical;
+  std::vector<TriangleIndices> &          m_Triangles;
+  AxisAlignedBoxArray                     m_Boxes;
+  TriangleAABBTree                        m_Tree;
+  std::vector<std::int64_t>               m_Owner; ///< per triangle: the operation of this pass that changed it, or -1
+  const Vec3                              m_Origin;
+  const Matrix<double, 3, 3>              m_M;
+  const SurfaceProjection &               m_Project;
+  const SliverRemovalParameters           m_Parameters;
+  std::vector<bool>                       m_Alive;
+  std::vector<std::vector<std::uint32_t>> m_Incident;
+  ComponentVolumes                        m_Volumes;
+  std::vector<std::uint32_t>              m_Lock;
+  std::uint32_t                           m_Stamp{ 0 };
+  std::vector<Operation>                  m_Operations;
+  std::vector<Kind>                       m_Kinds;
+  std::vector<std::uint32_t>              m_Worklist; ///< the triangles the next pass looks at
+  SliverRemovalResult                     m_Result;
+};
+} // namespace
+
+SliverRemovalResult
+RemoveSlivers(LargeBlockVector<Vec3> &         positions,
+              std::vector<TriangleIndices> &   triangles,
+              const Vec3 &                     origin,
+              const Matrix<double, 3, 3> &     indexToPhysical,
+              const SurfaceProjection &        project,
+              const SliverRemovalParameters & parameters)
+{
+  if (triangles.empty())
+  {
+    return {};
+  }
+  SliverRemover remover(positions, triangles, origin, indexToPhysical, project, parameters);
+  return remover.Run();
+}
+
+} // namespace detail
+} // namespace MeshExtraction
+} // namespace itk
