@@ -292,7 +292,7 @@ Methods()
       RunSlicerLabelmapPipeline },
     { "sn-hq",
       "SurfaceNets HQ",
-      "SurfaceNetsImageToMeshFilter, SNERT + HighQuality (regularity swaps and SNERT rounds), defaults otherwise",
+      "SurfaceNetsImageToMeshFilter, SNERT + HighQuality (regularity swaps and SNERT rounds, then the sliver removal), defaults otherwise",
       false,
       [](const ExtractionInput & in) {
         return RunSurfaceNets(in, Relaxation::Combined, [](SurfaceNetsFilterType * f) { f->SetHighQuality(true); });
