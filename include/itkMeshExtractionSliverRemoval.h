@@ -41,8 +41,9 @@ struct SliverRemovalParameters
   /** A triangle whose q_angle (smallest / largest angle) is below this is a sliver: the
    * pass works around it. */
   double sliverQAngle{ 0.3 };
-  /** Passes at most (each: operations on disjoint neighbourhoods, then the check). */
-  unsigned int maximumNumberOfPasses{ 6 };
+  /** Passes at most (each: operations on disjoint neighbourhoods, then the check); the
+   * passes end earlier when one makes no operation. */
+  unsigned int maximumNumberOfPasses{ 40 };
   /** A triangle at or below this q_area is degenerate: no operation may leave one. */
   double degenerateQAreaTolerance{ 1e-3 };
   /** The output stores float coordinates: every check sees the rounded points. */
@@ -69,15 +70,20 @@ using SurfaceProjection = std::function<bool(Vec3 & index)>;
  * face, nor the three thin triangles around a node of valence 3: that takes a change of
  * the connectivity. Around every triangle whose q_angle is below
  * SliverRemovalParameters::sliverQAngle, the pass tries the collapse of each of its
- * edges (onto either end, or onto the midpoint projected onto the surface), the swap of
- * each edge, and the move of each corner to the projected centroid of its neighbours,
- * and makes the one that raises the smallest q_angle of the triangles it changes the
- * most, if any does. An operation is made only where the mesh stays 2-manifold and
+ * edges (onto either end, onto the midpoint, or onto the centroid of both ends'
+ * neighbours, projected onto the surface), the swap of each edge, and the move of each
+ * corner (to the centroid of its neighbours, half-way there, or toward the apex of the
+ * equilateral triangle on the opposite edge, or half-way there, projected), and makes
+ * the one that raises the smallest q_angle of the triangles it changes the most, if any
+ * does. A sliver where none does is tried again only once something near it changed;
+ * an operation a check undid is not tried again. An operation is made only where the mesh stays 2-manifold and
  * closed (the link condition; no node of valence below 3), where no changed triangle
  * turns over against the one it replaces, folds against a neighbour or becomes
  * degenerate; after each pass the changed triangles are checked for crossings against
- * the whole mesh (TriangleAABBTree), and the components' enclosed volumes against the
- * start (IsCollapsedComponent), and the operations involved are undone. The operations
+ * the whole mesh (TriangleAABBTree, refitted only when testing the faces changed since
+ * the last refit one by one would cost more), and the components' enclosed volumes
+ * (kept up to date by each operation) against the start (IsCollapsedComponent), and the
+ * operations involved are undone. The operations
  * of one pass touch disjoint neighbourhoods, so each can be undone alone.
  *
  * `positions` are continuous indices (physical = origin + indexToPhysical * index);

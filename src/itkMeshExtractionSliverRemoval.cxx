@@ -25,6 +25,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <tuple>
 #include <utility>
 
 namespace itk
@@ -52,6 +54,8 @@ struct Operation
   std::vector<std::pair<std::uint32_t, std::pair<Vec3, Vec3>>>      nodes;     ///< node, old index / physical
   std::vector<std::uint32_t>                                        changed;   ///< alive slots it made
   std::vector<std::uint32_t>                                        dead;      ///< slots it removed
+  std::uint32_t component{ std::numeric_limits<std::uint32_t>::max() }; ///< the component it changed
+  double        sixVolumeChange{ 0.0 };                                 ///< of that component's 6 x volume
 };
 
 enum class Kind : std::uint8_t
@@ -85,6 +89,7 @@ public:
     , m_Triangles(m_Check.triangles)
     , m_Origin(origin)
     , m_M(indexToPhysical)
+    , m_MInverse(indexToPhysical.GetInverse())
     , m_Project(project)
     , m_Parameters(parameters)
   {
@@ -108,6 +113,10 @@ public:
       }
     }
     m_Volumes.Initialize(m_Triangles, m_Physical);
+    m_SixVolume = m_Volumes.reference;
+    m_IsStale.assign(m_Triangles.size(), false);
+    m_Failed.assign(m_Triangles.size(), 0);
+    m_Changed.assign(m_Index.size(), 0);
     m_Lock.assign(m_Index.size(), 0);
   }
 
@@ -138,6 +147,11 @@ private:
     Vec3 p;
     ToPhysical(&index, 1, m_Origin, m_M, m_Parameters.roundToFloat, &p);
     return p;
+  }
+  Vec3
+  ToIndex(const Vec3 & physical) const
+  {
+    return m_MInverse * (physical - m_Origin);
   }
   double
   QAngle(std::uint32_t f) const
@@ -430,9 +444,21 @@ private:
     return std::min(sharpest - 1e-9, ValidityThresholds::FoldCosine);
   }
   double
-  Score(const Operation & op, const std::vector<std::pair<std::uint32_t, Vec3>> & reference, const Vec3 & common, double foldLimit) const
+  Score(const Operation &                              op,
+        const std::vector<std::pair<std::uint32_t, Vec3>> & reference,
+        const Vec3 &                                     common,
+        double                                           foldLimit,
+        double                                           toBeat) const
   {
     double q = 1.0;
+    for (std::uint32_t f : op.changed)
+    {
+      q = std::min(q, this->QAngle(f));
+    }
+    if (!(q > toBeat))
+    {
+      return -1.0; // cannot win: the guards need not be looked at
+    }
     for (std::uint32_t f : op.changed)
     {
       const auto & t = m_Triangles[f];
@@ -457,7 +483,6 @@ private:
       {
         return -1.0;
       }
-      q = std::min(q, this->QAngle(f));
     }
     return q;
   }
@@ -487,10 +512,26 @@ private:
     }
     return false;
   }
-  /** Tries the candidate: its score (-1 if invalid), the mesh unchanged. */
+  /** Tries the candidate: its score (-1 if invalid or not above `toBeat`), the mesh
+   * unchanged. */
   double
-  Try(Candidate c)
+  Try(Candidate c, double toBeat)
   {
+    {
+      // First only the shapes: most candidates lose, and the guards' normals and folds
+      // around the star cost more than the operation.
+      Operation first;
+      if (!this->Apply(first, c))
+      {
+        return -1.0;
+      }
+      const double q = this->MinimumQAngle(first.changed);
+      this->Undo(first);
+      if (!(q > toBeat))
+      {
+        return -1.0;
+      }
+    }
     std::vector<std::uint32_t> star;
     Vec3                       common = MakeVec3(0, 0, 0);
     if (c.kind == Kind::Swap)
@@ -513,9 +554,60 @@ private:
     {
       return -1.0;
     }
-    const double score = this->Score(op, reference, common, foldLimit);
+    const double score = this->Score(op, reference, common, foldLimit, toBeat);
     this->Undo(op);
     return score;
+  }
+
+  /** The share of `slots` in 6 x the volume of `component` (ComponentSixVolumes' terms). */
+  double
+  SixVolume(const std::vector<std::uint32_t> & slots, std::uint32_t component) const
+  {
+    if (component >= m_Volumes.origin.size())
+    {
+      return 0.0;
+    }
+    const Vec3 & o = m_Volumes.origin[component];
+    double       volume = 0.0;
+    for (std::uint32_t f : slots)
+    {
+      const auto & t = m_Triangles[f];
+      volume += Dot(m_Physical[t[0]] - o, Cross(m_Physical[t[1]] - o, m_Physical[t[2]] - o));
+    }
+    return volume;
+  }
+
+  static std::tuple<Kind, std::uint32_t, std::uint32_t, double, double, double>
+  Key(const Candidate & c)
+  {
+    return { c.kind, c.a, c.b, c.index[0], c.index[1], c.index[2] };
+  }
+
+  /** Whether a node of `slots`, or one of their neighbours, changed in a pass after `stamp`. */
+  bool
+  ChangedSince(const std::vector<std::uint32_t> & slots, std::uint32_t stamp) const
+  {
+    for (std::uint32_t f : slots)
+    {
+      for (std::uint32_t v : m_Triangles[f])
+      {
+        if (m_Changed[v] >= stamp)
+        {
+          return true;
+        }
+        for (std::uint32_t g : m_Incident[v])
+        {
+          for (std::uint32_t w : m_Triangles[g])
+          {
+            if (m_Changed[w] >= stamp)
+            {
+              return true;
+            }
+          }
+        }
+      }
+    }
+    return false;
   }
 
   bool
@@ -565,6 +657,34 @@ private:
       candidates.push_back({ Kind::Swap, a, b, m_Index[a], 0.0 });
       if (m_Project)
       {
+        // Onto the centroid of both ends' neighbours: the merged node where smoothing
+        // would put it.
+        const auto na = this->Neighbours(a);
+        const auto nb = this->Neighbours(b);
+        Vec3       centroid = MakeVec3(0, 0, 0);
+        double     count = 0.0;
+        for (const auto * list : { &na, &nb })
+        {
+          for (std::uint32_t w : *list)
+          {
+            if (w != a && w != b)
+            {
+              centroid += m_Index[w];
+              count += 1.0;
+            }
+          }
+        }
+        if (count > 0.0)
+        {
+          centroid *= 1.0 / count;
+          if (m_Project(centroid))
+          {
+            candidates.push_back({ Kind::Collapse, a, b, centroid, 0.0 });
+          }
+        }
+      }
+      if (m_Project)
+      {
         const auto neighbours = this->Neighbours(a);
         Vec3       centroid = MakeVec3(0, 0, 0);
         for (std::uint32_t w : neighbours)
@@ -572,9 +692,33 @@ private:
           centroid += m_Index[w];
         }
         centroid *= 1.0 / static_cast<double>(neighbours.size());
+        Vec3 half = (centroid + m_Index[a]) * 0.5;
         if (m_Project(centroid))
         {
           candidates.push_back({ Kind::Move, a, a, centroid, 0.0 });
+        }
+        if (m_Project(half))
+        {
+          candidates.push_back({ Kind::Move, a, a, half, 0.0 });
+        }
+        // Toward the apex of the equilateral triangle on the opposite edge, in the
+        // sliver's plane: the position that mends the sliver itself.
+        const std::uint32_t b2 = t[(k + 1) % 3];
+        const std::uint32_t c2 = t[(k + 2) % 3];
+        const Vec3          pb = m_Physical[b2];
+        const Vec3          pc = m_Physical[c2];
+        const Vec3          n = Unit(Cross(pb - m_Physical[a], pc - m_Physical[a]));
+        const Vec3          edge = pc - pb;
+        const Vec3          up = Unit(Cross(n, edge)); // in the plane, toward a for a counter-clockwise (a, b, c)
+        const Vec3          apex = (pb + pc) * 0.5 + up * (0.8660254037844386 * Norm(edge));
+        for (double w : { 1.0, 0.5 })
+        {
+          const Vec3 target = m_Physical[a] * (1.0 - w) + apex * w;
+          Vec3       index = this->ToIndex(target);
+          if (m_Project(index))
+          {
+            candidates.push_back({ Kind::Move, a, a, index, 0.0 });
+          }
         }
       }
     }
@@ -625,18 +769,27 @@ private:
         continue; // gone, or mended by an earlier operation
       }
       const TriangleIndices t = m_Triangles[f];
-      if (this->Locked(this->Star({ t[0], t[1], t[2] })))
+      const auto            around = this->Star({ t[0], t[1], t[2] });
+      if (this->Locked(around))
       {
         continue;
+      }
+      if (m_Failed[f] > 0 && !this->ChangedSince(around, m_Failed[f]))
+      {
+        continue; // nothing helped before, and nothing around it changed since
       }
       Candidate best{ Kind::Move, 0, 0, MakeVec3(0, 0, 0), -1.0 };
       for (Candidate c : this->Candidates(f))
       {
+        if (!m_Refused.empty() && m_Refused.count(Key(c)) > 0)
+        {
+          continue;
+        }
         const std::vector<std::uint32_t> star =
           c.kind == Kind::Swap ? this->EdgeTriangles(c.a, c.b)
                                : (c.kind == Kind::Collapse ? this->Star({ c.a, c.b }) : this->Star({ c.a }));
         const double before = this->MinimumQAngle(star);
-        c.score = this->Try(c);
+        c.score = this->Try(c, std::max(before + MinimumGain, best.score));
         if (c.score > before + MinimumGain && c.score > best.score)
         {
           best = c;
@@ -644,16 +797,27 @@ private:
       }
       if (best.score < 0.0)
       {
+        m_Failed[f] = m_Stamp;
         continue;
       }
+      const std::vector<std::uint32_t> affected =
+        best.kind == Kind::Swap ? this->EdgeTriangles(best.a, best.b)
+                                : (best.kind == Kind::Collapse ? this->Star({ best.a, best.b }) : this->Star({ best.a }));
       Operation op;
+      op.component = m_Volumes.vertexComponent[best.a];
+      const double before = this->SixVolume(affected, op.component);
       this->Apply(op, best);
+      op.sixVolumeChange = this->SixVolume(affected, op.component) - before;
+      if (op.component < m_SixVolume.size())
+      {
+        m_SixVolume[op.component] += op.sixVolumeChange;
+      }
       this->Lock(op.changed);
       for (const auto & saved : op.incident)
       {
         m_Lock[saved.first] = m_Stamp;
       }
-      m_Kinds.push_back(best.kind);
+      m_Made.push_back(best);
       m_Operations.push_back(std::move(op));
     }
   }
@@ -664,24 +828,34 @@ private:
   UndoInvalidOperations()
   {
     std::vector<bool> undone(m_Operations.size(), false);
-    // Components pressed flat or turned inside out.
-    const std::vector<bool> collapsed = m_Volumes.Collapsed(m_Triangles, m_Physical);
+    auto              undo = [&](std::size_t i) {
+      this->Undo(m_Operations[i]);
+      m_SixVolume[m_Operations[i].component] -= m_Operations[i].sixVolumeChange;
+      undone[i] = true;
+    };
+    // Components pressed flat or turned inside out (their volumes kept up to date by
+    // each operation's change).
     for (std::size_t i = 0; i < m_Operations.size(); ++i)
     {
-      for (const auto & saved : m_Operations[i].incident)
+      const std::uint32_t c = m_Operations[i].component;
+      if (c < m_SixVolume.size() &&
+          IsCollapsedComponent(
+            m_Volumes.reference[c], m_SixVolume[c], m_Volumes.reference[c], ValidityThresholds::HighQualityCollapseFraction))
       {
-        const std::uint32_t c = m_Volumes.vertexComponent[saved.first];
-        if (c < collapsed.size() && collapsed[c] && !undone[i])
-        {
-          this->Undo(m_Operations[i]);
-          undone[i] = true;
-        }
+        undo(i);
       }
     }
+    std::size_t numberOfQueries = 0;
+    for (const Operation & op : m_Operations)
+    {
+      this->MarkStale(op);
+      numberOfQueries += op.changed.size();
+    }
+    this->RefitIfManyStale(numberOfQueries);
     // Crossing faces, again after each undo (an undone operation's old faces are checked
     // against the operations kept).
-    this->RefitTree();
-    for (unsigned int round = 0; round < ValidityThresholds::MaximumRepairRounds; ++round)
+    bool any = true;
+    for (unsigned int round = 0; round < ValidityThresholds::MaximumRepairRounds && any; ++round)
     {
       std::vector<std::uint32_t> queries;
       for (std::size_t i = 0; i < m_Operations.size(); ++i)
@@ -695,16 +869,14 @@ private:
           }
         }
       }
-      const auto pairs = FindSelfIntersections(m_Check, queries, m_Tree);
-      bool       any = false;
-      for (const auto & [f, g] : pairs)
+      any = false;
+      for (const auto & [f, g] : this->Crossings(queries))
       {
         for (std::uint32_t h : { f, g })
         {
           if (m_Owner[h] >= 0 && !undone[m_Owner[h]])
           {
-            this->Undo(m_Operations[m_Owner[h]]);
-            undone[m_Owner[h]] = true;
+            undo(static_cast<std::size_t>(m_Owner[h]));
             any = true;
           }
         }
@@ -713,21 +885,44 @@ private:
       {
         m_Owner[f] = -1;
       }
-      if (!any)
+    }
+    if (any)
+    {
+      // The rounds ran out before the last undo was checked: back to the pass's start,
+      // which was valid.
+      for (std::size_t i = m_Operations.size(); i-- > 0;)
       {
-        break;
+        if (!undone[i])
+        {
+          undo(i);
+        }
       }
-      this->RefitTree();
     }
     for (std::size_t i = 0; i < m_Operations.size(); ++i)
     {
       if (undone[i])
       {
         ++m_Result.numberOfUndone;
+        m_Refused.insert(Key(m_Made[i]));
         continue;
       }
       m_Worklist.insert(m_Worklist.end(), m_Operations[i].changed.begin(), m_Operations[i].changed.end());
-      switch (m_Kinds[i])
+      for (const auto & saved : m_Operations[i].incident)
+      {
+        m_Changed[saved.first] = m_Stamp;
+      }
+      for (std::uint32_t f : m_Operations[i].changed)
+      {
+        for (std::uint32_t v : m_Triangles[f])
+        {
+          m_Changed[v] = m_Stamp;
+        }
+      }
+      for (const auto & saved : m_Operations[i].nodes)
+      {
+        m_Changed[saved.first] = m_Stamp;
+      }
+      switch (m_Made[i].kind)
       {
         case Kind::Collapse:
           ++m_Result.numberOfCollapses;
@@ -740,26 +935,80 @@ private:
           break;
       }
     }
-    m_Kinds.clear();
+    m_Made.clear();
   }
 
-  /** The tree refitted to the triangles the operations of this pass changed (or that
-   * undoing them restored). */
+  /** The triangles whose boxes in the tree are out of date: changed since the last refit. */
   void
-  RefitTree()
+  MarkStale(std::uint32_t f)
   {
-    for (const Operation & op : m_Operations)
+    if (!m_IsStale[f])
     {
-      for (const auto & saved : op.triangles)
+      m_IsStale[f] = true;
+      m_Stale.push_back(f);
+    }
+  }
+  void
+  MarkStale(const Operation & op)
+  {
+    for (const auto & saved : op.triangles)
+    {
+      this->MarkStale(saved.first);
+    }
+    for (std::uint32_t f : op.changed)
+    {
+      this->MarkStale(f);
+    }
+  }
+  /** Refits the tree (a pass over all triangles) where testing the out-of-date
+   * triangles one by one against `numberOfQueries` faces would cost more. */
+  void
+  RefitIfManyStale(std::size_t numberOfQueries)
+  {
+    if (m_Stale.size() * numberOfQueries < 4 * m_Triangles.size())
+    {
+      return;
+    }
+    for (std::uint32_t f : m_Stale)
+    {
+      m_Boxes[f] = TriangleBox(m_Check, f);
+      m_IsStale[f] = false;
+    }
+    m_Stale.clear();
+    m_Tree.Refit(m_Check, m_Boxes);
+  }
+  /** The pairs of crossing faces that include one of `queries`: through the tree, and
+   * against the triangles whose boxes in it are out of date one by one. */
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>
+  Crossings(const std::vector<std::uint32_t> & queries) const
+  {
+    auto pairs = FindSelfIntersections(m_Check, queries, m_Tree);
+    if (m_Stale.empty())
+    {
+      return pairs;
+    }
+    std::vector<AxisAlignedBox> staleBoxes(m_Stale.size());
+    for (std::size_t k = 0; k < m_Stale.size(); ++k)
+    {
+      staleBoxes[k] = TriangleBox(m_Check, m_Stale[k]);
+    }
+    for (std::uint32_t q : queries)
+    {
+      if (!MeshFaceIsProper(m_Check, q))
       {
-        m_Boxes[saved.first] = TriangleBox(m_Check, saved.first);
+        continue;
       }
-      for (std::uint32_t f : op.changed)
+      const AxisAlignedBox box = TriangleBox(m_Check, q);
+      for (std::size_t k = 0; k < m_Stale.size(); ++k)
       {
-        m_Boxes[f] = TriangleBox(m_Check, f);
+        const std::uint32_t g = m_Stale[k];
+        if (g != q && box.Overlaps(staleBoxes[k]) && MeshFaceIsProper(m_Check, g) && MeshFacesIntersect(m_Check, q, g))
+        {
+          pairs.emplace_back(std::min(q, g), std::max(q, g));
+        }
       }
     }
-    m_Tree.Refit(m_Check, m_Boxes);
+    return pairs;
   }
 
   void
@@ -787,6 +1036,7 @@ private:
   std::vector<std::int64_t>               m_Owner; ///< per triangle: the operation of this pass that changed it, or -1
   const Vec3                              m_Origin;
   const Matrix<double, 3, 3>              m_M;
+  const Matrix<double, 3, 3>              m_MInverse;
   const SurfaceProjection &               m_Project;
   const SliverRemovalParameters           m_Parameters;
   std::vector<bool>                       m_Alive;
@@ -795,7 +1045,14 @@ private:
   std::vector<std::uint32_t>              m_Lock;
   std::uint32_t                           m_Stamp{ 0 };
   std::vector<Operation>                  m_Operations;
-  std::vector<Kind>                       m_Kinds;
+  std::vector<std::uint32_t>              m_Stale;
+  std::vector<std::uint32_t>              m_Failed;  ///< per triangle: the pass in which no candidate helped it (0: none)
+  std::vector<std::uint32_t>              m_Changed; ///< per node: the last pass whose kept operations changed its faces
+  std::vector<bool>                       m_IsStale;
+  std::vector<double>                     m_SixVolume; ///< per component: 6 x its signed volume now
+  std::vector<Candidate>                  m_Made; ///< per operation of this pass: what it was
+  /** Operations undone by a check, never tried again (a pass would make them again). */
+  std::set<std::tuple<Kind, std::uint32_t, std::uint32_t, double, double, double>> m_Refused;
   std::vector<std::uint32_t>              m_Worklist; ///< the triangles the next pass looks at
   SliverRemovalResult                     m_Result;
 };

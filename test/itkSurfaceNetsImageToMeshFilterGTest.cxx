@@ -889,8 +889,8 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualitySliverRemovalMendsWhatNodesInTheir
   // With the nodes kept in their cells (HighQualityCellDilation 0) the rounds leave
   // slivers on the thin plate, the narrow cleft and the two spheres: needles between
   // nodes pinned near a shared cell face. The local remeshing collapses, swaps or moves
-  // around each (measured: 24, 13 and 7 operations) and leaves none below q_angle 0.3,
-  // with the topology, the validity and the accuracy of the mesh kept.
+  // around each and leaves none below q_angle 0.3, with the topology, the validity and
+  // the accuracy of the mesh kept.
   EXPECT_TRUE(itk::SurfaceNetsImageToMeshFilter<FloatImage>::New()->GetHighQualitySliverRemoval());
   for (auto shape : { ME::PhantomShape::ThinPlate, ME::PhantomShape::NarrowCleft, ME::PhantomShape::TwoSpheres })
   {
