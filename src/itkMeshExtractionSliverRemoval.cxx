@@ -408,9 +408,6 @@ private:
     star.erase(std::unique(star.begin(), star.end()), star.end());
     return star;
   }
-  /** The score of the applied operation (the smallest q_angle it left), or -1 if it left
-   * a degenerate triangle, turned one over against `reference` (the old normals by slot,
-   * or one normal for all) or folded one against a neighbour. */
   /** The smallest cosine between triangle f's normal and those of its neighbours across
    * its edges (2 where it has none). */
   double
@@ -443,28 +440,21 @@ private:
     }
     return std::min(sharpest - 1e-9, ValidityThresholds::FoldCosine);
   }
-  double
-  Score(const Operation &                              op,
-        const std::vector<std::pair<std::uint32_t, Vec3>> & reference,
-        const Vec3 &                                     common,
-        double                                           foldLimit,
-        double                                           toBeat) const
+  /** Whether the applied operation left no degenerate triangle, none turned over against
+   * `reference` (the old normals by slot, or one normal for all) and none folded against a
+   * neighbour beyond `foldLimit`. */
+  bool
+  PassesGuards(const Operation &                                   op,
+               const std::vector<std::pair<std::uint32_t, Vec3>> & reference,
+               const Vec3 &                                        common,
+               double                                              foldLimit) const
   {
-    double q = 1.0;
-    for (std::uint32_t f : op.changed)
-    {
-      q = std::min(q, this->QAngle(f));
-    }
-    if (!(q > toBeat))
-    {
-      return -1.0; // cannot win: the guards need not be looked at
-    }
     for (std::uint32_t f : op.changed)
     {
       const auto & t = m_Triangles[f];
       if (TriangleQArea(m_Physical[t[0]], m_Physical[t[1]], m_Physical[t[2]]) <= m_Parameters.degenerateQAreaTolerance)
       {
-        return -1.0;
+        return false;
       }
       const Vec3 n = Unit(this->Normal(f));
       Vec3       before = common;
@@ -475,16 +465,12 @@ private:
           before = normal;
         }
       }
-      if (!(Dot(n, before) > ReplacementCosine))
+      if (!(Dot(n, before) > ReplacementCosine) || !(this->SharpestFold(f) > foldLimit))
       {
-        return -1.0;
-      }
-      if (!(this->SharpestFold(f) > foldLimit))
-      {
-        return -1.0;
+        return false;
       }
     }
-    return q;
+    return true;
   }
   std::vector<std::pair<std::uint32_t, Vec3>>
   Normals(const std::vector<std::uint32_t> & slots) const
@@ -517,6 +503,7 @@ private:
   double
   Try(Candidate c, double toBeat)
   {
+    double q = 0.0; // the smallest q_angle the operation leaves (the guards do not move nodes)
     {
       // First only the shapes: most candidates lose, and the guards' normals and folds
       // around the star cost more than the operation.
@@ -525,7 +512,7 @@ private:
       {
         return -1.0;
       }
-      const double q = this->MinimumQAngle(first.changed);
+      q = this->MinimumQAngle(first.changed);
       this->Undo(first);
       if (!(q > toBeat))
       {
@@ -554,9 +541,9 @@ private:
     {
       return -1.0;
     }
-    const double score = this->Score(op, reference, common, foldLimit, toBeat);
+    const bool valid = this->PassesGuards(op, reference, common, foldLimit);
     this->Undo(op);
-    return score;
+    return valid ? q : -1.0;
   }
 
   /** The share of `slots` in 6 x the volume of `component` (ComponentSixVolumes' terms). */

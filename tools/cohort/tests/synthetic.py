@@ -36,6 +36,10 @@ def _spec(rng, index, size_range):
     return shape, options, row
 
 
+# The case whose image is cut short: it fails on every attempt.
+CORRUPT_CASE = "corrupt"
+
+
 def make_cohort(tool, directory, count=20, size_range=(24, 40), seed=35, corrupt=True):
     """Writes DIR/images/*.nrrd and DIR/manifest.csv; returns the manifest's path."""
     rng = random.Random(seed)
@@ -52,9 +56,12 @@ def make_cohort(tool, directory, count=20, size_range=(24, 40), seed=35, corrupt
         # A scan cut short in transfer: the header of a valid image, half of its data.
         with open(os.path.join(images, f"{rows[0]['case']}.nrrd"), "rb") as stream:
             data = stream.read()
-        with open(os.path.join(images, "corrupt.nrrd"), "wb") as stream:
+        with open(os.path.join(images, f"{CORRUPT_CASE}.nrrd"), "wb") as stream:
             stream.write(data[: len(data) // 2])
-        rows.insert(len(rows) // 2, {"case": "corrupt", "image": "images/corrupt.nrrd", "iso": "0", "inside": "below"})
+        rows.insert(
+            len(rows) // 2,
+            {"case": CORRUPT_CASE, "image": f"images/{CORRUPT_CASE}.nrrd", "iso": "0", "inside": "below"},
+        )
     manifest = os.path.join(directory, "manifest.csv")
     with open(manifest, "w", newline="") as stream:
         writer = csv.DictWriter(stream, fieldnames=("case", "image", "iso", "inside", "label", "options"))

@@ -185,7 +185,7 @@ class WorkerKilledTest(CohortAssertions):
             running = attempt_files(outdir) if len(done) >= 4 else []
             for path in running:
                 case_id = os.path.basename(os.path.dirname(os.path.dirname(path)))
-                if case_id == "corrupt":
+                if case_id == synthetic.CORRUPT_CASE:
                     continue  # it fails on every attempt: its retry could not succeed
                 attempt = outputs.read_json(path)
                 tools = processes_in(os.path.dirname(path))
