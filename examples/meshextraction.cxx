@@ -55,7 +55,7 @@ PrintUsage(std::ostream & os, const std::vector<Command> & commands)
         "Accurate, well-formed surface meshes from CT and MRI volumes (ITK MeshExtraction).\n\ncommands:\n";
   for (const auto & c : commands)
   {
-    os << "  " << std::left << std::setw(10) << c.name << c.summary << '\n';
+    os << "  " << std::left << std::setw(12) << c.name << c.summary << '\n';
   }
   os << "\nRun 'meshextraction COMMAND --help' for the options of a command; 'meshextraction --version'\n"
         "prints the versions. Installed as meshextraction-extract (a link), the tool runs 'extract' and\n"

@@ -19,10 +19,10 @@
 #define itkEdgeSwapQuadEdgeMeshFilter_h
 
 #include "itkMeshExtractionEdgeSwapCriteria.h"
+#include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionEnums.h"
 #include "itkMeshExtractionMacros.h"
 #include "itkMeshExtractionValidityGuard.h"
-#include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
 #include "itkQuadEdgeMeshToQuadEdgeMeshFilter.h"
 
 #include <algorithm>
@@ -59,8 +59,7 @@ namespace itk
  * also keep the worse of its two triangles at that fraction of the old worse one's
  * q_area: on marching-cubes meshes pure regularity swaps raise the share of valence
  * 6 but lower the mean q_area until the mesh is smoothed, and a ratio of 1 avoids
- * that. The swap itself is ITK's QuadEdgeMeshEulerOperatorFlipEdgeFunction, whose
- * result is checked.
+ * that.
  *
  * The filter makes passes over all edges, in increasing order of their (smaller,
  * larger) point identifiers, each edge judged on the mesh as the earlier swaps of
@@ -80,17 +79,23 @@ namespace itk
  * MeshExtraction::detail::ValidityThresholds::MaximumSwapAttempts times, after which the input
  * is kept unswapped. The output then crosses itself nowhere the input did not.
  *
+ * The passes run on flat arrays (MeshExtraction::detail::SwapEdgesInPasses: half-edges
+ * and their twins), not on the QuadEdgeMesh: a swap there is a few array writes, where
+ * ITK's Euler operator (QuadEdgeMeshEulerOperatorFlipEdgeFunction) allocates and frees
+ * edges and faces and walks the quad-edge rings, which on meshes of millions of
+ * triangles made the passes most of the filter's time. The decisions are those the
+ * Euler operator's passes took; the output is built once, after the last attempt.
  * The high-quality SurfaceNets mode and the refinement of closed surfaces swap with
- * another engine, MeshExtraction::detail::SwapEdges on flat arrays, which takes the same
- * decision; two engines remain because this filter must take any triangle
- * QuadEdgeMesh, boundaries included, and hand on the mesh its Euler operator made (its
- * faces' identifiers and order), while that engine needs a closed surface and lets a
- * triangle take part in one swap per sweep, so that the guard can undo each swap on its
- * own (see itkMeshExtractionClosedSurfaceEdgeSwap.h). Here a later swap of a pass may
- * build on an earlier one, so a swap cannot be undone alone: the guard locks and
- * retries instead.
- * Points keep their identifiers, positions and point data; faces are re-created by
- * the swaps, so face identifiers change and face (cell) data does not follow them.
+ * another engine, MeshExtraction::detail::SwapEdges, which takes the same decision but
+ * needs a closed surface and lets a triangle take part in one swap per sweep, so that
+ * the guard can undo each swap on its own (see itkMeshExtractionClosedSurfaceEdgeSwap.h).
+ * Here a later swap of a pass may build on an earlier one, so a swap cannot be undone
+ * alone: the guard locks and retries instead.
+ * Points keep their identifiers, positions and point data. Without a swap the output
+ * is a copy of the input; after swaps its triangles are made anew in the input's face
+ * order (the two triangles of a swap in place of the old two), with new cell
+ * identifiers, and face (cell) data is not carried over. Edges without a face (wire
+ * edges) are kept.
  *
  * GetNumberOfSwaps() counts the swaps made, GetNumberOfRefusedSwaps() the
  * improving swaps that a check refused (once per pass), GetNumberOfIterations()
@@ -118,7 +123,6 @@ public:
   using OutputMeshType = TOutputMesh;
   using OutputQEType = typename OutputMeshType::QEType;
   using OutputPointIdentifier = typename OutputMeshType::PointIdentifier;
-  using FlipEdgeFunctionType = QuadEdgeMeshEulerOperatorFlipEdgeFunction<OutputMeshType, OutputQEType>;
   using EdgeSwapCriterionEnum = MeshExtractionEnums::EdgeSwapCriterion;
 
   static_assert(OutputMeshType::PointDimension == 3, "EdgeSwapQuadEdgeMeshFilter works on 3-D surface meshes");
@@ -192,42 +196,20 @@ protected:
   void
   VerifyParameters() const;
 
-  /** One pass over the edges; returns the number of swaps made. */
-  SizeValueType
-  SwapPass(OutputMeshType * mesh, const MeshExtraction::detail::EdgeSwapParameters & parameters);
-
 private:
-  using PointPair = std::pair<OutputPointIdentifier, OutputPointIdentifier>;
-
   /** The decision's parameters from the filter's settings. */
   MeshExtraction::detail::EdgeSwapParameters
   MakeSwapParameters() const;
-  /** One attempt: the input copied to the output (`again`: after an earlier attempt),
-   * then passes until one swaps nothing or MaximumNumberOfIterations are made. */
-  void
-  SwapFromInput(bool again, const MeshExtraction::detail::EdgeSwapParameters & parameters);
-  /** The corners of `triangles` of `mesh` (the output) join the crossing-locked points. */
+  /** One flag per point of `mesh`: locked by SetLockedPoints() or by the guard. */
+  std::vector<std::uint8_t>
+  LockFlags(const MeshExtraction::IndexedTriangleMesh & mesh) const;
+  /** The corners of `triangles` of `mesh` join the crossing-locked points. */
   void
   LockCorners(const MeshExtraction::IndexedTriangleMesh & mesh, const std::vector<std::uint32_t> & triangles);
-  /** The edges of `mesh` as (smaller, larger) point identifiers, sorted. */
-  static std::vector<PointPair>
-  SortedEdges(const OutputMeshType * mesh);
-  /** Each point's number of edges and whether it is on a boundary, by identifier. */
-  static void
-  CountValences(const OutputMeshType * mesh, std::vector<int> & valence, std::vector<std::uint8_t> & onBoundary);
-  bool
-  IsLocked(OutputPointIdentifier p) const;
-  /** The quad of the edge from corners[0] to corners[1], with corners[2] on its left
-   * and corners[3] on its right (MeshExtraction::detail::EdgeSwapQuad). */
-  static MeshExtraction::detail::EdgeSwapQuad
-  MakeQuad(OutputMeshType *                  mesh,
-           const OutputPointIdentifier       corners[4],
-           const std::vector<int> &          valence,
-           const std::vector<std::uint8_t> & onBoundary);
-  /** Swaps edge e of the quad `corners` with ITK's Euler operator; false if it refuses.
-   * Throws if it made another edge than (corners[2], corners[3]). */
-  bool
-  Flip(FlipEdgeFunctionType * flip, OutputMeshType * mesh, OutputQEType * e, const OutputPointIdentifier corners[4]);
+  /** The output: the input's points, point data and wire edges, and the triangles of
+   * `swapped`. */
+  void
+  MakeOutput(const MeshExtraction::IndexedTriangleMesh & swapped);
 
   EdgeSwapCriterionEnum m_Criterion{ EdgeSwapCriterionEnum::Regularity };
   int                   m_MaximumNumberOfIterations{ 20 };

@@ -19,6 +19,7 @@
 #define itkEdgeSwapQuadEdgeMeshFilter_hxx
 
 #include "itkEdgeSwapQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionEdgeSwapPasses.h"
 #include "itkMeshExtractionIndexedTriangleMesh.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionQualityAnalysis.h"
@@ -60,172 +61,6 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::VerifyParameters() const
 }
 
 template <typename TInputMesh, typename TOutputMesh>
-auto
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SortedEdges(const OutputMeshType * mesh) -> std::vector<PointPair>
-{
-  std::vector<PointPair> edges;
-  const auto *           edgeCells = mesh->GetEdgeCells();
-  edges.reserve(edgeCells->Size());
-  for (auto it = edgeCells->Begin(); it != edgeCells->End(); ++it)
-  {
-    const auto * cell = it.Value();
-    if (cell == nullptr || cell->GetNumberOfPoints() != 2)
-    {
-      continue;
-    }
-    auto                        p = cell->PointIdsBegin();
-    const OutputPointIdentifier a = *p;
-    const OutputPointIdentifier b = *(p + 1);
-    edges.emplace_back(std::min(a, b), std::max(a, b));
-  }
-  std::sort(edges.begin(), edges.end());
-  return edges;
-}
-
-template <typename TInputMesh, typename TOutputMesh>
-void
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::CountValences(const OutputMeshType *      mesh,
-                                                                   std::vector<int> &          valence,
-                                                                   std::vector<std::uint8_t> & onBoundary)
-{
-  const auto *          points = mesh->GetPoints();
-  OutputPointIdentifier largestId = 0;
-  for (auto it = points->Begin(); it != points->End(); ++it)
-  {
-    largestId = std::max(largestId, it.Index());
-  }
-  valence.assign(static_cast<std::size_t>(largestId) + 1, 0);
-  onBoundary.assign(static_cast<std::size_t>(largestId) + 1, 0);
-  for (auto it = points->Begin(); it != points->End(); ++it)
-  {
-    valence[it.Index()] = std::max(0, it.Value().GetValence());
-    onBoundary[it.Index()] = it.Value().IsInternal() ? 0 : 1;
-  }
-}
-
-template <typename TInputMesh, typename TOutputMesh>
-bool
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::IsLocked(OutputPointIdentifier p) const
-{
-  return std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), p) ||
-         std::binary_search(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end(), p);
-}
-
-template <typename TInputMesh, typename TOutputMesh>
-MeshExtraction::detail::EdgeSwapQuad
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeQuad(OutputMeshType *                  mesh,
-                                                              const OutputPointIdentifier       corners[4],
-                                                              const std::vector<int> &          valence,
-                                                              const std::vector<std::uint8_t> & onBoundary)
-{
-  using MeshExtraction::ToVec3;
-  const OutputPointIdentifier          a = corners[0];
-  const OutputPointIdentifier          b = corners[1];
-  const OutputPointIdentifier          c = corners[2];
-  const OutputPointIdentifier          d = corners[3];
-  auto *                               points = mesh->GetPoints();
-  MeshExtraction::detail::EdgeSwapQuad quad;
-  quad.a = ToVec3(points->ElementAt(a));
-  quad.b = ToVec3(points->ElementAt(b));
-  quad.c = ToVec3(points->ElementAt(c));
-  quad.d = ToVec3(points->ElementAt(d));
-  quad.valenceA = static_cast<unsigned int>(valence[a]);
-  quad.valenceB = static_cast<unsigned int>(valence[b]);
-  quad.valenceC = static_cast<unsigned int>(valence[c]);
-  quad.valenceD = static_cast<unsigned int>(valence[d]);
-  quad.boundaryA = onBoundary[a] != 0;
-  quad.boundaryB = onBoundary[b] != 0;
-  quad.boundaryC = onBoundary[c] != 0;
-  quad.boundaryD = onBoundary[d] != 0;
-  quad.sameApex = c == d;
-  quad.oppositeEdgeExists = !quad.sameApex && mesh->FindEdge(c, d) != nullptr;
-  return quad;
-}
-
-template <typename TInputMesh, typename TOutputMesh>
-auto
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapPass(
-  OutputMeshType *                                   mesh,
-  const MeshExtraction::detail::EdgeSwapParameters & parameters) -> SizeValueType
-{
-  if (mesh->GetEdgeCells() == nullptr)
-  {
-    return 0;
-  }
-  // The edges as (smaller, larger) point identifiers, in increasing order: the
-  // order does not depend on where the quad-edge structure keeps them.
-  const std::vector<PointPair> edges = SortedEdges(mesh);
-  // Valences and boundary flags once per pass (walking a point's edge ring through
-  // the quad-edge structure is slow), kept up to date as edges are swapped: a swap
-  // takes an edge from a and b and gives one to c and d; boundaries do not change.
-  std::vector<int>          valence;
-  std::vector<std::uint8_t> onBoundary;
-  CountValences(mesh, valence, onBoundary);
-  const bool    anyLocked = !m_LockedPoints.empty() || !m_CrossingLockedPoints.empty();
-  auto          flip = FlipEdgeFunctionType::New();
-  SizeValueType swaps = 0;
-  for (const auto & ab : edges)
-  {
-    OutputQEType * e = mesh->FindEdge(ab.first, ab.second);
-    if (e == nullptr || !e->IsInternal() || !e->IsLnextOfTriangle() || !e->GetSym()->IsLnextOfTriangle())
-    {
-      continue; // swapped away earlier in this pass, on a boundary, or not between two triangles
-    }
-    const OutputPointIdentifier q[4] = {
-      e->GetOrigin(), e->GetDestination(), e->GetLnext()->GetDestination(), e->GetSym()->GetLnext()->GetDestination()
-    };
-    if (anyLocked && (this->IsLocked(q[0]) || this->IsLocked(q[1]) || this->IsLocked(q[2]) || this->IsLocked(q[3])))
-    {
-      continue;
-    }
-    const MeshExtraction::detail::EdgeSwapDecision decision =
-      MeshExtraction::detail::EvaluateEdgeSwap(MakeQuad(mesh, q, valence, onBoundary), parameters);
-    if (decision.verdict == MeshExtraction::detail::EdgeSwapVerdict::NoImprovement)
-    {
-      continue;
-    }
-    if (!decision.Swap() || !this->Flip(flip, mesh, e, q))
-    {
-      ++m_NumberOfRefusedSwaps;
-      continue;
-    }
-    --valence[q[0]];
-    --valence[q[1]];
-    ++valence[q[2]];
-    ++valence[q[3]];
-    ++swaps;
-  }
-  return swaps;
-}
-
-template <typename TInputMesh, typename TOutputMesh>
-bool
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::Flip(FlipEdgeFunctionType *      flip,
-                                                          OutputMeshType *            mesh,
-                                                          OutputQEType *              e,
-                                                          const OutputPointIdentifier corners[4])
-{
-  flip->SetInput(mesh);
-  OutputQEType * result = flip->Evaluate(e);
-  if (result == nullptr)
-  {
-    // FlipEdge checks what CheckEdgeSwap checked and leaves the mesh unchanged
-    // when it refuses; count it as refused.
-    return false;
-  }
-  const OutputPointIdentifier o = result->GetOrigin();
-  const OutputPointIdentifier t = result->GetDestination();
-  const OutputPointIdentifier c = corners[2];
-  const OutputPointIdentifier d = corners[3];
-  if (!((o == c && t == d) || (o == d && t == c)) || !result->IsInternal())
-  {
-    itkExceptionMacro(<< "QuadEdgeMeshEulerOperatorFlipEdgeFunction turned edge (" << corners[0] << ", " << corners[1]
-                      << ") into (" << o << ", " << t << ") instead of (" << c << ", " << d << ")");
-  }
-  return true;
-}
-
-template <typename TInputMesh, typename TOutputMesh>
 MeshExtraction::detail::EdgeSwapParameters
 EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeSwapParameters() const
 {
@@ -239,31 +74,22 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeSwapParameters() const
 }
 
 template <typename TInputMesh, typename TOutputMesh>
-void
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::SwapFromInput(
-  bool                                               again,
-  const MeshExtraction::detail::EdgeSwapParameters & parameters)
+std::vector<std::uint8_t>
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::LockFlags(const MeshExtraction::IndexedTriangleMesh & mesh) const
 {
-  if (again)
+  std::vector<std::uint8_t> locked;
+  if (m_LockedPoints.empty() && m_CrossingLockedPoints.empty())
   {
-    this->GetOutput()->Initialize(); // the copy adds to what the output holds
+    return locked;
   }
-  this->CopyInputMeshToOutputMesh();
-  m_NumberOfSwaps = 0;
-  m_NumberOfRefusedSwaps = 0;
-  m_NumberOfIterations = 0;
-  ++m_NumberOfAttempts;
-  for (int pass = 0; pass < m_MaximumNumberOfIterations; ++pass)
+  locked.assign(mesh.points.size(), 0);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
   {
-    const SizeValueType swaps = this->SwapPass(this->GetOutput(), parameters);
-    m_NumberOfSwaps += swaps;
-    ++m_NumberOfIterations;
-    this->UpdateProgress(static_cast<float>(pass + 1) / static_cast<float>(m_MaximumNumberOfIterations));
-    if (swaps == 0)
-    {
-      break;
-    }
+    const auto id = static_cast<OutputPointIdentifier>(mesh.pointIds[i]);
+    locked[i] = std::binary_search(m_LockedPoints.begin(), m_LockedPoints.end(), id) ||
+                std::binary_search(m_CrossingLockedPoints.begin(), m_CrossingLockedPoints.end(), id);
   }
+  return locked;
 }
 
 template <typename TInputMesh, typename TOutputMesh>
@@ -311,26 +137,37 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   m_KeptInput = false;
   m_CrossingLockedPoints.clear();
   const MeshExtraction::detail::EdgeSwapParameters parameters = this->MakeSwapParameters();
+  const MeshExtraction::IndexedTriangleMesh        start = MeshExtraction::MakeIndexedTriangleMesh(*input);
   // The input's edges: a triangle with another edge is new.
   std::vector<MeshExtraction::detail::PointIdentifierEdge> inputEdges;
   if (m_PreventSelfIntersections)
   {
-    inputEdges = MeshExtraction::detail::EdgesByPointIdentifier(MeshExtraction::MakeIndexedTriangleMesh(*input));
+    inputEdges = MeshExtraction::detail::EdgesByPointIdentifier(start);
   }
   this->UpdateProgress(0.0f);
   // Swap from the input; with PreventSelfIntersections, the validity guard's lock and
   // retry: the corners of new triangles that cross another triangle are locked and the
   // swaps made again from the input, until none crosses or the attempts run out.
-  constexpr unsigned int attempts = MeshExtraction::detail::ValidityThresholds::MaximumSwapAttempts;
+  constexpr unsigned int              attempts = MeshExtraction::detail::ValidityThresholds::MaximumSwapAttempts;
+  MeshExtraction::IndexedTriangleMesh swapped;
   for (unsigned int attempt = 0; attempt < attempts; ++attempt)
   {
-    this->SwapFromInput(attempt > 0, parameters);
+    swapped.points = start.points;
+    swapped.pointIds = start.pointIds;
+    swapped.triangles = start.triangles;
+    ++m_NumberOfAttempts;
+    const MeshExtraction::detail::EdgeSwapPassCounts counts = MeshExtraction::detail::SwapEdgesInPasses(
+      swapped, parameters, this->LockFlags(swapped), m_MaximumNumberOfIterations, [this](int passes) {
+        this->UpdateProgress(static_cast<float>(passes) / static_cast<float>(m_MaximumNumberOfIterations));
+      });
+    m_NumberOfSwaps = counts.swaps;
+    m_NumberOfRefusedSwaps = counts.refused;
+    m_NumberOfIterations = counts.passes;
     if (!m_PreventSelfIntersections || m_NumberOfSwaps == 0)
     {
       break;
     }
-    const MeshExtraction::IndexedTriangleMesh indexed = MeshExtraction::MakeIndexedTriangleMesh(*this->GetOutput());
-    const std::vector<std::uint32_t> crossing = MeshExtraction::detail::FindCrossingNewTriangles(indexed, inputEdges);
+    const std::vector<std::uint32_t> crossing = MeshExtraction::detail::FindCrossingNewTriangles(swapped, inputEdges);
     m_NumberOfCrossingTriangles += crossing.size();
     if (crossing.empty())
     {
@@ -338,15 +175,57 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
     }
     if (attempt + 1 == attempts)
     {
-      this->GetOutput()->Initialize(); // still crossing: keep the input
-      this->CopyInputMeshToOutputMesh();
-      m_NumberOfSwaps = 0;
+      m_NumberOfSwaps = 0; // still crossing: keep the input
       m_KeptInput = true;
       break;
     }
-    this->LockCorners(indexed, crossing);
+    this->LockCorners(swapped, crossing);
+  }
+  if (m_NumberOfSwaps == 0)
+  {
+    this->CopyInputMeshToOutputMesh();
+  }
+  else
+  {
+    this->MakeOutput(swapped);
   }
   this->UpdateProgress(1.0f);
+}
+
+template <typename TInputMesh, typename TOutputMesh>
+void
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeOutput(const MeshExtraction::IndexedTriangleMesh & swapped)
+{
+  this->CopyInputMeshToOutputMeshPoints();
+  this->CopyInputMeshToOutputMeshPointData();
+  OutputMeshType * output = this->GetOutput();
+  for (std::size_t f = 0; f < swapped.triangles.size(); ++f)
+  {
+    const auto &                t = swapped.triangles[f];
+    const OutputPointIdentifier p0 = static_cast<OutputPointIdentifier>(swapped.pointIds[t[0]]);
+    const OutputPointIdentifier p1 = static_cast<OutputPointIdentifier>(swapped.pointIds[t[1]]);
+    const OutputPointIdentifier p2 = static_cast<OutputPointIdentifier>(swapped.pointIds[t[2]]);
+    if (output->AddFaceTriangle(p0, p1, p2) == nullptr)
+    {
+      itkExceptionMacro(<< "the QuadEdgeMesh refused swapped triangle (" << p0 << ", " << p1 << ", " << p2 << ")");
+    }
+  }
+  // Edges without a face on either side are not in the triangles; keep them.
+  const auto * edges = this->GetInput()->GetEdgeCells();
+  if (edges != nullptr)
+  {
+    for (auto it = edges->Begin(); it != edges->End(); ++it)
+    {
+      const auto * edge = dynamic_cast<const typename InputMeshType::EdgeCellType *>(it.Value());
+      // ITK's quad-edge queries are not const.
+      auto * qe = edge != nullptr ? const_cast<typename InputMeshType::QEType *>(edge->GetQEGeom()) : nullptr;
+      if (qe != nullptr && qe->IsWire())
+      {
+        output->AddEdge(static_cast<OutputPointIdentifier>(qe->GetOrigin()),
+                        static_cast<OutputPointIdentifier>(qe->GetDestination()));
+      }
+    }
+  }
 }
 
 template <typename TInputMesh, typename TOutputMesh>

@@ -45,13 +45,10 @@ namespace detail
  * UndoIntersectingSwaps() then undoes, one by one, the swaps that left the surface
  * invalid (itkMeshExtractionValidityGuard.h).
  *
- * Why two swap engines: EdgeSwapQuadEdgeMeshFilter swaps on a QuadEdgeMesh and this
- * engine on flat arrays, and both take the same decision (itkMeshExtractionEdgeSwapCriteria.h),
- * but they cannot be one engine:
- * - the filter takes any triangle QuadEdgeMesh, with boundaries, and keeps it a
- *   QuadEdgeMesh: its swaps are ITK's Euler operator, whose new faces and edges make
- *   the order of the mesh it hands on; rebuilding the mesh from flat arrays would give
- *   other face identifiers and another face order;
+ * Why two swap engines: EdgeSwapQuadEdgeMeshFilter's passes
+ * (itkMeshExtractionEdgeSwapPasses.h) and this engine both swap on flat arrays and take
+ * the same decision (itkMeshExtractionEdgeSwapCriteria.h), but they cannot be one engine:
+ * - the filter takes any triangle QuadEdgeMesh, with boundaries;
  * - this engine needs a closed 2-manifold (every half-edge has a twin), and lets a
  *   triangle take part in one swap per sweep, so that the guard can undo each swap on
  *   its own, in place, while the nodes keep moving between sweeps. The filter's pass

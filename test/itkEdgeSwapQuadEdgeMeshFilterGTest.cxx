@@ -20,6 +20,7 @@
 #include "itkMeshSurfaceDistanceCalculator.h"
 #include "itkTaubinSmoothingQuadEdgeMeshFilter.h"
 #include "itkMeshExtractionEdgeSwapCriteria.h"
+#include "itkMeshExtractionEdgeSwapPasses.h"
 #include "itkMeshExtractionRandomSurfaces.h"
 #include "itkMeshExtractionTestHelpers.h"
 #include "itkTriangleMeshQualityCalculator.h"
@@ -27,6 +28,7 @@
 #include "itkImplicitSurfaceImageSource.h"
 
 #include "itkGTest.h"
+#include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
 #include <algorithm>
 #include <cstdlib>
 #include <array>
@@ -529,6 +531,206 @@ TEST(EdgeSwapQuadEdgeMeshFilter, BoundaryEdgesAreNeverSwapped)
       EXPECT_NE(filter->GetOutput()->FindEdge(i, i + 1), nullptr);
     }
   }
+}
+
+/** The filter's passes as they were made on the QuadEdgeMesh itself with ITK's Euler
+ * operator (QuadEdgeMeshEulerOperatorFlipEdgeFunction), before they moved to flat
+ * arrays: the oracle that the array passes must agree with, swap for swap. */
+template <typename TMesh>
+itk::SizeValueType
+EulerOperatorPasses(TMesh * mesh, const EdgeSwapParameters & parameters, int maximumPasses)
+{
+  using PointIdentifier = typename TMesh::PointIdentifier;
+  itk::SizeValueType total = 0;
+  auto               flip = itk::QuadEdgeMeshEulerOperatorFlipEdgeFunction<TMesh, typename TMesh::QEType>::New();
+  flip->SetInput(mesh);
+  for (int pass = 0; pass < maximumPasses; ++pass)
+  {
+    std::vector<std::pair<PointIdentifier, PointIdentifier>> edges;
+    for (auto it = mesh->GetEdgeCells()->Begin(); it != mesh->GetEdgeCells()->End(); ++it)
+    {
+      auto p = it.Value()->PointIdsBegin();
+      edges.emplace_back(std::min(p[0], p[1]), std::max(p[0], p[1]));
+    }
+    std::sort(edges.begin(), edges.end());
+    std::map<PointIdentifier, int>  valence;
+    std::map<PointIdentifier, bool> boundary;
+    for (auto it = mesh->GetPoints()->Begin(); it != mesh->GetPoints()->End(); ++it)
+    {
+      valence[it.Index()] = it.Value().GetValence();
+      boundary[it.Index()] = !it.Value().IsInternal();
+    }
+    itk::SizeValueType swaps = 0;
+    for (const auto & ab : edges)
+    {
+      auto * e = mesh->FindEdge(ab.first, ab.second);
+      if (e == nullptr || !e->IsInternal() || !e->IsLnextOfTriangle() || !e->GetSym()->IsLnextOfTriangle())
+      {
+        continue;
+      }
+      const PointIdentifier q[4] = { e->GetOrigin(), e->GetDestination(), e->GetLnext()->GetDestination(),
+                                     e->GetSym()->GetLnext()->GetDestination() };
+      EdgeSwapQuad          quad;
+      Vec3 *                corners[4] = { &quad.a, &quad.b, &quad.c, &quad.d };
+      unsigned int *        valences[4] = { &quad.valenceA, &quad.valenceB, &quad.valenceC, &quad.valenceD };
+      bool *                boundaries[4] = { &quad.boundaryA, &quad.boundaryB, &quad.boundaryC, &quad.boundaryD };
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        const auto & point = mesh->GetPoint(q[k]);
+        *corners[k] = MakeVec3(point[0], point[1], point[2]);
+        *valences[k] = static_cast<unsigned int>(valence[q[k]]);
+        *boundaries[k] = boundary[q[k]];
+      }
+      quad.sameApex = q[2] == q[3];
+      quad.oppositeEdgeExists = !quad.sameApex && mesh->FindEdge(q[2], q[3]) != nullptr;
+      if (!itk::MeshExtraction::detail::EvaluateEdgeSwap(quad, parameters).Swap() || flip->Evaluate(e) == nullptr)
+      {
+        continue;
+      }
+      --valence[q[0]];
+      --valence[q[1]];
+      ++valence[q[2]];
+      ++valence[q[3]];
+      ++swaps;
+    }
+    total += swaps;
+    if (swaps == 0)
+    {
+      break;
+    }
+  }
+  return total;
+}
+
+TEST(EdgeSwapQuadEdgeMeshFilter, ArrayPassesSwapAsITKsEulerOperatorDid)
+{
+  // Marching-cubes spheres, closed and with a cap cut off, perturbed spheres and open
+  // grids, every criterion: the filter's triangles and swap count equal those of the
+  // Euler operator's passes.
+  const IndexedTriangleMesh mc = itk::MeshExtraction::MakeIndexedTriangleMesh(*MarchingCubesSphere());
+  IndexedTriangleMesh       cut = mc;
+  cut.triangles.clear();
+  for (const auto & t : mc.triangles)
+  {
+    if (!(mc.points[t[0]][2] > 28 && mc.points[t[1]][2] > 28 && mc.points[t[2]][2] > 28))
+    {
+      cut.triangles.push_back(t);
+    }
+  }
+  ASSERT_LT(cut.triangles.size(), mc.triangles.size());
+  std::mt19937                     rng(4242);
+  std::vector<IndexedTriangleMesh> meshes = { mc, cut };
+  for (int k = 0; k < 16; ++k)
+  {
+    IndexedTriangleMesh m = k % 2 == 0 ? MakeIcosphere(2, 10.0) : MakeGrid(12);
+    std::uniform_real_distribution<double> u(-0.6, 0.6);
+    for (auto & p : m.points)
+    {
+      p += MakeVec3(u(rng), u(rng), k % 2 == 0 ? u(rng) : 0.2 * u(rng));
+    }
+    meshes.push_back(m);
+  }
+  std::map<Criterion, itk::SizeValueType> swapsByCriterion;
+  for (std::size_t k = 0; k < meshes.size(); ++k)
+  {
+    for (Criterion c : { Criterion::Regularity, Criterion::Delaunay, Criterion::ShortestEdge })
+    {
+      const auto input = ToITKMesh<QEMeshDType>(meshes[k]);
+      auto       filter = itk::EdgeSwapQuadEdgeMeshFilter<QEMeshDType>::New();
+      filter->SetInput(input);
+      filter->SetCriterion(c);
+      filter->SetPreventSelfIntersections(false);
+      filter->Update();
+      EdgeSwapParameters parameters;
+      parameters.criterion = c;
+      parameters.featureAngle = filter->GetFeatureAngle() * itk::Math::pi / 180.0;
+      const auto reference = ToITKMesh<QEMeshDType>(meshes[k]);
+      const auto swaps =
+        EulerOperatorPasses(reference.GetPointer(), parameters, filter->GetMaximumNumberOfIterations());
+      EXPECT_EQ(filter->GetNumberOfSwaps(), swaps) << "mesh " << k << ", " << c;
+      const IndexedTriangleMesh a = itk::MeshExtraction::MakeIndexedTriangleMesh(*filter->GetOutput());
+      const IndexedTriangleMesh b = itk::MeshExtraction::MakeIndexedTriangleMesh(*reference);
+      auto                      asSet = [](const IndexedTriangleMesh & t) {
+        std::set<std::array<itk::IdentifierType, 3>> triangles;
+        for (const auto & f : t.triangles)
+        {
+          std::array<itk::IdentifierType, 3> ids = { t.pointIds[f[0]], t.pointIds[f[1]], t.pointIds[f[2]] };
+          std::rotate(ids.begin(), std::min_element(ids.begin(), ids.end()), ids.end());
+          triangles.insert(ids);
+        }
+        return triangles;
+      };
+      EXPECT_EQ(asSet(a), asSet(b)) << "mesh " << k << ", " << c;
+      swapsByCriterion[c] += swaps;
+    }
+  }
+  EXPECT_GT(swapsByCriterion[Criterion::Regularity], 1000u);
+  EXPECT_GT(swapsByCriterion[Criterion::Delaunay], 100u);
+  EXPECT_GT(swapsByCriterion[Criterion::ShortestEdge], 100u);
+}
+
+TEST(EdgeSwapQuadEdgeMeshFilter, SwapsKeepPointDataAndWireEdges)
+{
+  IndexedTriangleMesh                    grid = MakeGrid(6);
+  std::mt19937                           rng(5);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  for (auto & p : grid.points)
+  {
+    p += MakeVec3(u(rng), u(rng), 0.1 * u(rng));
+  }
+  const auto input = ToITKMesh<QEMeshType>(grid);
+  // An extra point joined to a corner of the grid by an edge without faces.
+  QEMeshType::PointType extra;
+  extra[0] = -3.0;
+  extra[1] = -3.0;
+  extra[2] = 0.0;
+  const QEMeshType::PointIdentifier extraId = input->GetNumberOfPoints();
+  input->SetPoint(extraId, extra);
+  ASSERT_NE(input->AddEdge(0, extraId), nullptr);
+  for (QEMeshType::PointIdentifier i = 0; i <= extraId; ++i)
+  {
+    input->SetPointData(i, static_cast<QEMeshType::PixelType>(i) * 0.5);
+  }
+  auto filter = SwapType::New();
+  filter->SetInput(input);
+  filter->SetCriterion(Criterion::Delaunay);
+  filter->Update();
+  ASSERT_GT(filter->GetNumberOfSwaps(), 0u);
+  const QEMeshType * out = filter->GetOutput();
+  EXPECT_EQ(out->GetNumberOfPoints(), input->GetNumberOfPoints());
+  EXPECT_EQ(out->GetNumberOfFaces(), input->GetNumberOfFaces());
+  EXPECT_NE(out->FindEdge(0, extraId), nullptr);
+  for (QEMeshType::PointIdentifier i = 0; i <= extraId; ++i)
+  {
+    QEMeshType::PixelType value = -1;
+    ASSERT_TRUE(out->GetPointData(i, &value));
+    EXPECT_EQ(value, static_cast<QEMeshType::PixelType>(i) * 0.5);
+    EXPECT_EQ(out->GetPoint(i), input->GetPoint(i));
+  }
+}
+
+TEST(EdgeSwapQuadEdgeMeshFilter, ArrayPassesRefuseAnEdgeOfThreeTriangles)
+{
+  IndexedTriangleMesh m;
+  m.points = { MakeVec3(0, 0, 0), MakeVec3(1, 0, 0), MakeVec3(0, 1, 0), MakeVec3(0, -1, 0), MakeVec3(0, 0, 1) };
+  m.pointIds = { 0, 1, 2, 3, 4 };
+  m.triangles = { { 0, 1, 2 }, { 1, 0, 3 }, { 0, 1, 4 } };
+  try
+  {
+    itk::MeshExtraction::detail::SwapEdgesInPasses(m, EdgeSwapParameters(), {}, 20);
+    FAIL() << "no exception";
+  }
+  catch (const itk::ExceptionObject & e)
+  {
+    EXPECT_NE(std::string(e.GetDescription()).find("edge (0, 1) has 3 triangles"), std::string::npos)
+      << e.GetDescription();
+  }
+  m.triangles = { { 0, 1, 2 }, { 0, 1, 3 } };
+  EXPECT_THROW(itk::MeshExtraction::detail::SwapEdgesInPasses(m, EdgeSwapParameters(), {}, 20),
+               itk::ExceptionObject); // both run (0, 1) the same way
+  m.triangles = { { 0, 1, 2 }, { 1, 0, 3 } };
+  EXPECT_THROW(itk::MeshExtraction::detail::SwapEdgesInPasses(m, EdgeSwapParameters(), { 0, 0 }, 20),
+               itk::ExceptionObject); // two lock flags for five points
 }
 
 TEST(EdgeSwapQuadEdgeMeshFilter, RegularMeshesHaveNothingToSwap)
