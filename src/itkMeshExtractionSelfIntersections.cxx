@@ -465,6 +465,13 @@ FindSelfIntersections(const IndexedTriangleMesh & mesh, const std::vector<std::u
   {
     probed[f] = true;
   }
+  if (2 * asked.size() > valid.size())
+  {
+    // Most faces asked (a smoothing step moves nearly all): the tree against itself
+    // visits each overlapping pair once, where a query per face meets each twice.
+    return IntersectingOverlappingPairs(
+      mesh, tree, [&probed](std::uint32_t f, std::uint32_t g) { return probed[f] || probed[g]; });
+  }
   return IntersectingQueryPairs(
     mesh,
     tree,
