@@ -209,7 +209,7 @@ private:
   /** The output: the input's points, point data and wire edges, and the triangles of
    * `swapped`. */
   void
-  MakeOutput(const MeshExtraction::IndexedTriangleMesh & swapped);
+  BuildOutput(const MeshExtraction::IndexedTriangleMesh & swapped);
 
   EdgeSwapCriterionEnum m_Criterion{ EdgeSwapCriterionEnum::Regularity };
   int                   m_MaximumNumberOfIterations{ 20 };

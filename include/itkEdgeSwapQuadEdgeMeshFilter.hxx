@@ -187,14 +187,14 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   }
   else
   {
-    this->MakeOutput(swapped);
+    this->BuildOutput(swapped);
   }
   this->UpdateProgress(1.0f);
 }
 
 template <typename TInputMesh, typename TOutputMesh>
 void
-EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::MakeOutput(const MeshExtraction::IndexedTriangleMesh & swapped)
+EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::BuildOutput(const MeshExtraction::IndexedTriangleMesh & swapped)
 {
   this->CopyInputMeshToOutputMeshPoints();
   this->CopyInputMeshToOutputMeshPointData();

@@ -242,6 +242,11 @@ protected:
   std::vector<MeshExtraction::Vec3>
   Positions() const;
 
+  /** Keeps the triangles, point identifiers and topology of `mesh`, the working mesh as
+   * arrays (points in the container's order). */
+  void
+  SetArrays(const MeshExtraction::IndexedTriangleMesh & mesh);
+
 private:
   double                  m_MaximumDeviation{ 0.0 };
   double                  m_TargetQuality{ 0.9 };
@@ -265,6 +270,7 @@ private:
   DetectorType                                 m_Detector;
   std::vector<MeshExtraction::Vec3>            m_AfterEdgeDetection;
   std::vector<MeshExtraction::TriangleIndices> m_Triangles;
+  std::vector<IdentifierType>                  m_PointIds; ///< of the points in container order
   MeshExtraction::MeshTopology                 m_Topology;
 };
 } // namespace itk

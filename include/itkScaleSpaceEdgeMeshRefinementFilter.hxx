@@ -22,7 +22,7 @@
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionDistanceAnalysis.h"
 #include "itkMeshExtractionClosedSurfaceEdgeSwap.h"
-#include "itkTriangleMeshQualityCalculator.h"
+#include "itkMeshExtractionQualityAnalysis.h"
 #include "itkQuadEdgeMeshEulerOperatorFlipEdgeFunction.h"
 
 #include <algorithm>
@@ -84,12 +84,18 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Record(
   step.cycle = cycle;
   step.seconds = seconds;
 
-  auto calculator = TriangleMeshQualityCalculator<OutputMeshType>::New();
-  calculator->SetMesh(m_Working);
-  calculator->SetComputeSelfIntersections(false);
-  calculator->SetComputeOutwardOrientation(false);
-  calculator->Compute();
-  const auto & report = calculator->GetReport();
+  // What TriangleMeshQualityCalculator measures, on the arrays the filter keeps (the
+  // working mesh's points in container order and its triangles): converting the
+  // QuadEdgeMesh again for every step took longer than the measurement.
+  const std::vector<MeshExtraction::Vec3> positions = this->Positions();
+  MeshExtraction::IndexedTriangleMesh     current;
+  current.points = positions;
+  current.triangles = m_Triangles;
+  current.pointIds = m_PointIds;
+  MeshExtraction::detail::TriangleMeshQualityOptions options;
+  options.computeSelfIntersections = false;
+  options.computeOutwardOrientation = false;
+  const MeshExtraction::TriangleMeshQualityReport report = MeshExtraction::detail::AnalyzeTriangleMesh(current, options);
   step.numberOfPoints = report.numberOfPoints;
   step.numberOfTriangles = report.numberOfTriangles;
   step.meanMinimumAngle = report.minimumAngle.mean;
@@ -98,7 +104,6 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Record(
   step.degenerateTriangles = report.degenerateTriangles;
   step.nonManifold = report.nonManifoldEdges + report.nonManifoldVertices;
 
-  const std::vector<MeshExtraction::Vec3> positions = this->Positions();
   if (before != nullptr && before->size() == positions.size())
   {
     std::int64_t turned = 0;
@@ -137,6 +142,16 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::Record(
   }
   m_Steps.push_back(step);
   return m_Steps.back();
+}
+
+template <typename TInputMesh, typename TImage, typename TOutputMesh>
+void
+ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::SetArrays(
+  const MeshExtraction::IndexedTriangleMesh & mesh)
+{
+  m_Triangles = mesh.triangles;
+  m_PointIds = mesh.pointIds;
+  m_Topology = MeshExtraction::BuildMeshTopology(mesh);
 }
 
 template <typename TInputMesh, typename TImage, typename TOutputMesh>
@@ -219,9 +234,13 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::ClosedSurfa
     }
   }
   m_Working = rebuilt;
-  const MeshExtraction::IndexedTriangleMesh swapped = MeshExtraction::MakeIndexedTriangleMesh(*m_Working);
-  m_Triangles = swapped.triangles;
-  m_Topology = MeshExtraction::BuildMeshTopology(swapped);
+  // The rebuilt mesh's points are the same, in the same order, and its faces are the
+  // swapped triangles in this order: its arrays need no conversion back.
+  MeshExtraction::IndexedTriangleMesh swapped;
+  swapped.points = indexed.points;
+  swapped.pointIds = indexed.pointIds;
+  swapped.triangles = std::move(surface.triangles);
+  this->SetArrays(swapped);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   StepType &   step = this->Record(OperationEnum::EdgeSwap, cycle, seconds, nullptr);
   step.changes = kept;
@@ -246,8 +265,7 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::QuadEdgeEdg
   m_Working = swapped;
   const SizeValueType swaps = swap->GetNumberOfSwaps();
   const SizeValueType cutting = swap->GetNumberOfCrossingTriangles();
-  m_Triangles = MeshExtraction::MakeIndexedTriangleMesh(*m_Working).triangles;
-  m_Topology = MeshExtraction::BuildMeshTopology(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
+  this->SetArrays(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   StepType &   step = this->Record(OperationEnum::EdgeSwap, cycle, seconds, nullptr);
   step.changes = static_cast<std::int64_t>(swaps);
@@ -332,8 +350,7 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::GenerateDat
 
   m_Working = OutputMeshType::New();
   CopyMeshToMesh(input, m_Working.GetPointer());
-  m_Triangles = MeshExtraction::MakeIndexedTriangleMesh(*m_Working).triangles;
-  m_Topology = MeshExtraction::BuildMeshTopology(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
+  this->SetArrays(MeshExtraction::MakeIndexedTriangleMesh(*m_Working));
   this->UpdateProgress(0.0f);
 
   // Thesis section 4.2.4: ED, ES, then cycles of S..., ED, ES until the target.
@@ -370,6 +387,7 @@ ScaleSpaceEdgeMeshRefinementFilter<TInputMesh, TImage, TOutputMesh>::GenerateDat
   m_Working = nullptr;
   m_AfterEdgeDetection.clear();
   m_Triangles.clear();
+  m_PointIds.clear();
   m_Topology = MeshExtraction::MeshTopology();
   m_Detector.ReleaseScaleSpace();
   this->UpdateProgress(1.0f);
