@@ -149,12 +149,14 @@ EdgeSwapQuadEdgeMeshFilter<TInputMesh, TOutputMesh>::GenerateData()
   // retry: the corners of new triangles that cross another triangle are locked and the
   // swaps made again from the input, until none crosses or the attempts run out.
   constexpr unsigned int              attempts = MeshExtraction::detail::ValidityThresholds::MaximumSwapAttempts;
-  MeshExtraction::IndexedTriangleMesh swapped;
+  // The swaps change triangles only: each attempt starts from the input's triangles.
+  MeshExtraction::IndexedTriangleMesh swapped = start;
   for (unsigned int attempt = 0; attempt < attempts; ++attempt)
   {
-    swapped.points = start.points;
-    swapped.pointIds = start.pointIds;
-    swapped.triangles = start.triangles;
+    if (attempt > 0)
+    {
+      swapped.triangles = start.triangles;
+    }
     ++m_NumberOfAttempts;
     const MeshExtraction::detail::EdgeSwapPassCounts counts = MeshExtraction::detail::SwapEdgesInPasses(
       swapped, parameters, this->LockFlags(swapped), m_MaximumNumberOfIterations, [this](int passes) {

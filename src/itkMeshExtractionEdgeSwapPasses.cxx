@@ -115,6 +115,16 @@ public:
   }
 
 private:
+  using EdgeCorners = std::pair<std::uint32_t, std::uint32_t>;
+
+  /** The pass's edge order: by the (smaller, larger) point identifiers of the corners. */
+  bool
+  ByIdentifiers(const EdgeCorners & p, const EdgeCorners & q) const
+  {
+    const auto & ids = m_Mesh.pointIds;
+    return ids[p.first] < ids[q.first] || (ids[p.first] == ids[q.first] && ids[p.second] < ids[q.second]);
+  }
+
   std::uint32_t
   Origin(std::uint32_t h) const
   {
@@ -198,11 +208,8 @@ private:
     }
     std::vector<std::uint32_t> order(m_Listed.size());
     std::iota(order.begin(), order.end(), 0u);
-    const auto & ids = m_Mesh.pointIds;
-    std::sort(order.begin(), order.end(), [this, &ids](std::uint32_t x, std::uint32_t y) {
-      const auto & p = m_Listed[x];
-      const auto & q = m_Listed[y];
-      return ids[p.first] < ids[q.first] || (ids[p.first] == ids[q.first] && ids[p.second] < ids[q.second]);
+    std::sort(order.begin(), order.end(), [this](std::uint32_t x, std::uint32_t y) {
+      return this->ByIdentifiers(m_Listed[x], m_Listed[y]);
     });
     std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted(m_Listed.size());
     m_Slot.assign(m_Listed.size(), None);
@@ -250,10 +257,10 @@ private:
       std::swap(u, v);
     }
     const auto end = m_Listed.begin() + m_NumberOfListedEdges;
-    const auto byIds = [&ids](const auto & p, const auto & q) {
-      return ids[p.first] < ids[q.first] || (ids[p.first] == ids[q.first] && ids[p.second] < ids[q.second]);
-    };
-    const auto it = std::lower_bound(m_Listed.begin(), end, std::make_pair(u, v), byIds);
+    const auto it = std::lower_bound(
+      m_Listed.begin(), end, std::make_pair(u, v), [this](const EdgeCorners & p, const EdgeCorners & q) {
+        return this->ByIdentifiers(p, q);
+      });
     if (it != end && it->first == u && it->second == v)
     {
       return static_cast<std::uint32_t>(it - m_Listed.begin());

@@ -63,8 +63,9 @@ Analyze(const QEMeshType * mesh, bool selfIntersections = true)
 
 /** The triangles of a mesh as point-identifier triples, each rotated to start at
  * its smallest identifier (orientation kept), in a set. */
+template <typename TMesh>
 std::set<std::array<itk::IdentifierType, 3>>
-TriangleSet(const QEMeshType * mesh)
+TriangleSetOf(const TMesh * mesh)
 {
   const IndexedTriangleMesh                    m = itk::MeshExtraction::MakeIndexedTriangleMesh(*mesh);
   std::set<std::array<itk::IdentifierType, 3>> triangles;
@@ -75,6 +76,12 @@ TriangleSet(const QEMeshType * mesh)
     triangles.insert(ids);
   }
   return triangles;
+}
+
+std::set<std::array<itk::IdentifierType, 3>>
+TriangleSet(const QEMeshType * mesh)
+{
+  return TriangleSetOf(mesh);
 }
 
 /** The internal edges of an indexed mesh with their quads: (a, b, c, d) where
@@ -648,19 +655,7 @@ TEST(EdgeSwapQuadEdgeMeshFilter, ArrayPassesSwapAsITKsEulerOperatorDid)
       const auto swaps =
         EulerOperatorPasses(reference.GetPointer(), parameters, filter->GetMaximumNumberOfIterations());
       EXPECT_EQ(filter->GetNumberOfSwaps(), swaps) << "mesh " << k << ", " << c;
-      const IndexedTriangleMesh a = itk::MeshExtraction::MakeIndexedTriangleMesh(*filter->GetOutput());
-      const IndexedTriangleMesh b = itk::MeshExtraction::MakeIndexedTriangleMesh(*reference);
-      auto                      asSet = [](const IndexedTriangleMesh & t) {
-        std::set<std::array<itk::IdentifierType, 3>> triangles;
-        for (const auto & f : t.triangles)
-        {
-          std::array<itk::IdentifierType, 3> ids = { t.pointIds[f[0]], t.pointIds[f[1]], t.pointIds[f[2]] };
-          std::rotate(ids.begin(), std::min_element(ids.begin(), ids.end()), ids.end());
-          triangles.insert(ids);
-        }
-        return triangles;
-      };
-      EXPECT_EQ(asSet(a), asSet(b)) << "mesh " << k << ", " << c;
+      EXPECT_EQ(TriangleSetOf(filter->GetOutput()), TriangleSetOf(reference.GetPointer())) << "mesh " << k << ", " << c;
       swapsByCriterion[c] += swaps;
     }
   }
