@@ -15,7 +15,6 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-// libFuzzer harness for the module's mesh-file readers: the first byte chooses the
 // Editing connected orthogonal contours stays interactive (issue 31): one control-point
 // move, which re-scan-converts the contours it touches, and the closed mesh made again
 // from the model, for a model of about 20 contours (the 3-contour template on a 64^3 grid

@@ -121,6 +121,9 @@ public:
   GetNumberOfModes() const;
   const std::vector<double> &
   GetVariances() const;
+  /** The variances of all m - 1 modes, kept or not (the compactness curve). */
+  const std::vector<double> &
+  GetAllVariances() const;
   double
   GetTotalVariance() const;
   /** The template passes run and the index of the pivot mesh. */

@@ -93,6 +93,13 @@ LandmarkFreeShapeModelEstimator<TMesh>::GetVariances() const
 }
 
 template <typename TMesh>
+const std::vector<double> &
+LandmarkFreeShapeModelEstimator<TMesh>::GetAllVariances() const
+{
+  return this->Result().allVariances;
+}
+
+template <typename TMesh>
 double
 LandmarkFreeShapeModelEstimator<TMesh>::GetTotalVariance() const
 {

@@ -37,9 +37,10 @@ namespace MeshExtraction
 MeshExtraction_EXPORT IndexedTriangleMesh
 ReadPLYFile(const std::string & fileName);
 
-/** Writes triangles as binary little-endian PLY (float coordinates, int indices). */
+/** Writes triangles as binary little-endian PLY (float coordinates, or double where
+ * the points must be read back exactly, int indices). */
 MeshExtraction_EXPORT void
-WritePLYFile(const std::string & fileName, const IndexedTriangleMesh & mesh);
+WritePLYFile(const std::string & fileName, const IndexedTriangleMesh & mesh, bool doubleCoordinates = false);
 } // namespace MeshExtraction
 } // namespace itk
 

@@ -95,6 +95,53 @@ BuildShapeModel(const std::vector<IndexedTriangleMesh> & meshes,
                 const ShapeModelSettings &               settings,
                 const std::function<void(double)> &      progress = {});
 
+/** The steps of BuildShapeModel, for builds that spread the per-mesh matches over
+ * processes or machines (meshextraction-cohort shape-model on Dask): the same arithmetic
+ * in the same order, so such a build gives the same model as BuildShapeModel. */
+
+/** The pivot: the first of the prepared meshes with most vertices, the first template. */
+MeshExtraction_EXPORT std::size_t
+ChoosePivot(const std::vector<IndexedTriangleMesh> & meshes);
+
+/** One prepared mesh matched to the template of a pass. */
+struct TemplateMatch
+{
+  Shape                corresponded;   ///< the template's points on the mesh, in the mesh's frame
+  SimilarityParameters templateToMesh; ///< the similarity ICP's result
+  double               e2{ 0.0 };      ///< eq. 7.3 at the end of the ICP
+};
+
+/** Matches the template to `mesh` (both prepared): the symmetric similarity ICP from
+ * `initial` (null: the initial estimate of centroids, axes and sizes), then the
+ * correspondence (non-rigid, or closest points). From the second pass on, `initial` is
+ * the mesh's previous match composed with the inverse of the pass's gauge. */
+MeshExtraction_EXPORT TemplateMatch
+MatchTemplate(const IndexedTriangleMesh &         templateMesh,
+              const IndexedTriangleMesh &         mesh,
+              const ShapeModelSettings &          settings,
+              const SimilarityParameters *        initial,
+              const std::function<void(double)> & progress = {});
+
+/** The end of a pass: the mean of the matches taken back to the template's frame,
+ * similarity-aligned to the template (`gauge`: mean to new template), with the old points
+ * kept where the mean would cross or fold (non-rigid builds); `change` is the RMS move
+ * of the template (mm). Throws for no matches or a match of another template. */
+struct RenewedTemplate
+{
+  Shape                points;
+  SimilarityParameters gauge;
+  double               change{ 0.0 };
+};
+MeshExtraction_EXPORT RenewedTemplate
+RenewTemplate(const IndexedTriangleMesh &        templateMesh,
+              const std::vector<TemplateMatch> & matches,
+              const ShapeModelSettings &         settings);
+
+/** Procrustes analysis and PCA of result.corresponded (the last pass's matches): fills
+ * aligned, toModel, model and allVariances. */
+MeshExtraction_EXPORT void
+FinishShapeModel(ShapeModelBuildResult & result, double varianceFraction);
+
 /** "input mesh i": how errors and reports name training mesh i. */
 MeshExtraction_EXPORT std::string
                       TrainingMeshName(std::size_t i);

@@ -527,11 +527,13 @@ ReadPLYFile(const std::string & fileName)
 }
 
 void
-WritePLYFile(const std::string & fileName, const IndexedTriangleMesh & mesh)
+WritePLYFile(const std::string & fileName, const IndexedTriangleMesh & mesh, bool doubleCoordinates)
 {
-  std::ofstream out(fileName, std::ios::binary);
+  std::ofstream     out(fileName, std::ios::binary);
+  const char *const type = doubleCoordinates ? "double" : "float";
   out << "ply\nformat binary_little_endian 1.0\ncomment MeshExtraction\nelement vertex " << mesh.points.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << mesh.triangles.size()
+      << "\nproperty " << type << " x\nproperty " << type << " y\nproperty " << type << " z\nelement face "
+      << mesh.triangles.size()
       << "\nproperty list uchar int vertex_indices\nend_header\n";
   auto put = [&out](auto value) {
     unsigned char bytes[sizeof(value)];
@@ -550,9 +552,17 @@ WritePLYFile(const std::string & fileName, const IndexedTriangleMesh & mesh)
   };
   for (const Vec3 & p : mesh.points)
   {
-    put(static_cast<float>(p[0]));
-    put(static_cast<float>(p[1]));
-    put(static_cast<float>(p[2]));
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      if (doubleCoordinates)
+      {
+        put(static_cast<double>(p[d]));
+      }
+      else
+      {
+        put(static_cast<float>(p[d]));
+      }
+    }
   }
   for (const TriangleIndices & t : mesh.triangles)
   {

@@ -262,6 +262,65 @@ RMSDistance(const Shape & a, const Shape & b)
   return std::sqrt(sum / static_cast<double>(a.size()));
 }
 
+/** One mesh matched to the template (thesis 7.2.2, one mesh of a pass): the symmetric
+ * similarity ICP from `initial` (or the initial estimate), then the correspondence in
+ * the mesh's frame: the non-rigid match from T(template), or T(template)'s closest
+ * points. */
+TemplateMatch
+MatchOne(const ClosestPointQuery &           onTemplate,
+         const std::vector<Vec3> &           templatePoints,
+         const TrainingMesh &                training,
+         const NonRigidTemplate *            nonRigid,
+         const ShapeModelSettings &          settings,
+         const SimilarityParameters *        initial,
+         const std::function<void(double)> & progress)
+{
+  const double         icpShare = nonRigid ? 0.15 : 1.0;
+  SymmetricICPSettings icp;
+  icp.correspondence = settings.correspondence;
+  const SimilarityTransform::Pointer start = initial ? ToSimilarityTransform(*initial) : nullptr;
+  icp.initial = start.GetPointer();
+  icp.relativeTolerance = settings.icpRelativeTolerance;
+  icp.measureInitialE2 = false;
+  const SymmetricICPResult match = RunSymmetricICP(onTemplate, training.query, icp);
+  if (progress)
+  {
+    progress(icpShare);
+  }
+  TemplateMatch                 out;
+  out.e2 = match.e2;
+  out.templateToMesh = ToSimilarityParameters(*match.fixedToMoving);
+  const std::vector<Vec3> moved = TransformPoints(templatePoints, *match.fixedToMoving);
+  if (nonRigid)
+  {
+    out.corresponded = MatchNonRigid(*nonRigid, moved, *training.target, [&](double f) {
+      if (progress)
+      {
+        progress(icpShare + (1.0 - icpShare) * f);
+      }
+    });
+    return out;
+  }
+  const std::vector<SurfacePoint> closest = training.query.Find(moved);
+  out.corresponded.resize(closest.size());
+  for (std::size_t k = 0; k < closest.size(); ++k)
+  {
+    out.corresponded[k] = closest[k].point;
+  }
+  return out;
+}
+
+std::unique_ptr<NonRigidTemplate>
+MakeNonRigidTemplate(const IndexedTriangleMesh & templateMesh, const ShapeModelSettings & settings)
+{
+  if (!settings.nonRigid)
+  {
+    return nullptr;
+  }
+  return std::make_unique<NonRigidTemplate>(
+    templateMesh.triangles, templateMesh.points.size(), settings.nonRigidSettings);
+}
+
 /** The passes of thesis 7.2.2 as named steps: match and correspond every mesh, then
  * renew the template. */
 class TemplatePasses
@@ -273,23 +332,15 @@ public:
       : m_Meshes(meshes)
       , m_Settings(settings)
       , m_Progress(progress)
-      , m_Transforms(meshes.size())
   {
-    for (std::size_t i = 0; i < meshes.size(); ++i)
-    {
-      m_Pivot = meshes[i].points.size() > meshes[m_Pivot].points.size() ? i : m_Pivot;
-    }
+    m_Pivot = ChoosePivot(meshes);
     m_Template.points = meshes[m_Pivot].points;
     m_Template.triangles = meshes[m_Pivot].triangles;
     for (const IndexedTriangleMesh & mesh : meshes)
     {
       m_Training.push_back(std::make_unique<TrainingMesh>(mesh, settings));
     }
-    if (settings.nonRigid)
-    {
-      m_NonRigid =
-        std::make_unique<NonRigidTemplate>(m_Template.triangles, m_Template.points.size(), settings.nonRigidSettings);
-    }
+    m_NonRigid = MakeNonRigidTemplate(m_Template, settings);
   }
 
   /** The passes until the template settles or their maximum; fills `result`. */
@@ -301,9 +352,15 @@ public:
     for (unsigned int pass = 0; pass < m_Settings.maximumNumberOfPasses; ++pass)
     {
       this->MatchAll(pass, result);
-      const double change = this->RenewTemplate();
-      result.templateChanges.push_back(change);
-      if (change < m_Settings.passTolerance)
+      const RenewedTemplate renewed = RenewTemplate(m_Template, m_Matches, m_Settings);
+      m_Template.points = renewed.points;
+      const SimilarityParameters inverse = renewed.gauge.Inverse();
+      for (TemplateMatch & match : m_Matches)
+      {
+        match.templateToMesh = Compose(match.templateToMesh, inverse);
+      }
+      result.templateChanges.push_back(renewed.change);
+      if (renewed.change < m_Settings.passTolerance)
       {
         break;
       }
@@ -311,32 +368,29 @@ public:
   }
 
 private:
-  /** Every mesh matched to the template and corresponded: Y_i in its frame, and
-   * Z_i = T_i^-1(Y_i) in the template's. */
+  /** Every mesh matched to the template and corresponded (its matrix of the previous
+   * pass, moved with the template, the initial estimate). */
   void
   MatchAll(unsigned int pass, ShapeModelBuildResult & result)
   {
     const ClosestPointQuery onTemplate(m_Template, m_Settings.correspondence);
+    m_Matches.resize(m_Meshes.size());
     result.corresponded.assign(m_Meshes.size(), Shape());
     result.e2.assign(m_Meshes.size(), 0.0);
-    m_InTemplateFrame.assign(m_Meshes.size(), Shape());
     for (std::size_t i = 0; i < m_Meshes.size(); ++i)
     {
-      const double         step = 1.0 / static_cast<double>(m_Settings.maximumNumberOfPasses * m_Meshes.size());
-      const double         start = (pass * m_Meshes.size() + i) * step;
-      const double         icpShare = m_Settings.nonRigid ? 0.15 : 1.0;
-      SymmetricICPSettings icp;
-      icp.correspondence = m_Settings.correspondence;
-      icp.initial = pass > 0 ? m_Transforms[i].GetPointer() : nullptr;
-      icp.relativeTolerance = m_Settings.icpRelativeTolerance;
-      icp.measureInitialE2 = false;
-      const SymmetricICPResult match = RunSymmetricICP(onTemplate, m_Training[i]->query, icp);
-      m_Transforms[i] = match.fixedToMoving;
-      result.e2[i] = match.e2;
-      this->Report(start + icpShare * step);
-      result.corresponded[i] =
-        this->Correspond(i, [&](double f) { this->Report(start + (icpShare + (1.0 - icpShare) * f) * step); });
-      m_InTemplateFrame[i] = TransformPoints(result.corresponded[i], *m_Transforms[i]->GetInverseTransform());
+      const double step = 1.0 / static_cast<double>(m_Settings.maximumNumberOfPasses * m_Meshes.size());
+      const double start = (pass * m_Meshes.size() + i) * step;
+      const SimilarityParameters previous = m_Matches[i].templateToMesh;
+      m_Matches[i] = MatchOne(onTemplate,
+                              m_Template.points,
+                              *m_Training[i],
+                              m_NonRigid.get(),
+                              m_Settings,
+                              pass > 0 ? &previous : nullptr,
+                              [&](double f) { this->Report(start + f * step); });
+      result.e2[i] = m_Matches[i].e2;
+      result.corresponded[i] = m_Matches[i].corresponded;
     }
     double sum = 0.0;
     for (double e : result.e2)
@@ -344,54 +398,6 @@ private:
       sum += e;
     }
     result.meanE2PerPass.push_back(sum / static_cast<double>(result.e2.size()));
-  }
-
-  /** The template's points on mesh i, in its frame: the non-rigid match from T_i(template),
-   * or the closest points of T_i(template). */
-  Shape
-  Correspond(std::size_t i, const std::function<void(double)> & progress) const
-  {
-    const std::vector<Vec3> moved = TransformPoints(m_Template.points, *m_Transforms[i]);
-    if (m_NonRigid)
-    {
-      return MatchNonRigid(*m_NonRigid, moved, *m_Training[i]->target, progress);
-    }
-    const std::vector<SurfacePoint> closest = m_Training[i]->query.Find(moved);
-    Shape                           out(closest.size());
-    for (std::size_t k = 0; k < closest.size(); ++k)
-    {
-      out[k] = closest[k].point;
-    }
-    return out;
-  }
-
-  /** The new template: the mean of the Z_i, similarity-aligned to the old one (the gauge
-   * fix); the transforms follow it. Returns the RMS move of the template. */
-  double
-  RenewTemplate()
-  {
-    const Shape                mean = Mean(m_InTemplateFrame);
-    const SimilarityParameters gauge = AlignShape(mean, m_Template.points, true);
-    Shape                      next = ApplySimilarity(gauge, mean);
-    if (m_NonRigid && m_NonRigid->GetSettings().preventFolds)
-    {
-      // The mean of surfaces free of self-intersections need not be: where it crosses or
-      // folds, the old template's points stay.
-      IndexedTriangleMesh renewed;
-      renewed.points = next;
-      renewed.triangles = m_Template.triangles;
-      UndoFoldingMoves(
-        renewed, BuildMeshTopology(renewed), m_Template.points, ValidityThresholds::DegenerateQAreaTolerance);
-      next = renewed.points;
-    }
-    const double change = RMSDistance(next, m_Template.points);
-    m_Template.points = next;
-    const SimilarityParameters inverse = gauge.Inverse();
-    for (auto & transform : m_Transforms)
-    {
-      transform = ToSimilarityTransform(Compose(ToSimilarityParameters(*transform), inverse));
-    }
-    return change;
   }
 
   void
@@ -410,10 +416,81 @@ private:
   IndexedTriangleMesh                        m_Template;
   std::vector<std::unique_ptr<TrainingMesh>> m_Training;
   std::unique_ptr<NonRigidTemplate>          m_NonRigid;
-  std::vector<SimilarityTransform::Pointer>  m_Transforms; ///< template to mesh i
-  std::vector<Shape>                         m_InTemplateFrame;
+  std::vector<TemplateMatch>                 m_Matches;
 };
 } // namespace
+
+std::size_t
+ChoosePivot(const std::vector<IndexedTriangleMesh> & meshes)
+{
+  std::size_t pivot = 0;
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+  {
+    pivot = meshes[i].points.size() > meshes[pivot].points.size() ? i : pivot;
+  }
+  return pivot;
+}
+
+TemplateMatch
+MatchTemplate(const IndexedTriangleMesh &         templateMesh,
+              const IndexedTriangleMesh &         mesh,
+              const ShapeModelSettings &          settings,
+              const SimilarityParameters *        initial,
+              const std::function<void(double)> & progress)
+{
+  const ClosestPointQuery                 onTemplate(templateMesh, settings.correspondence);
+  const TrainingMesh                      training(mesh, settings);
+  const std::unique_ptr<NonRigidTemplate> nonRigid = MakeNonRigidTemplate(templateMesh, settings);
+  return MatchOne(onTemplate, templateMesh.points, training, nonRigid.get(), settings, initial, progress);
+}
+
+RenewedTemplate
+RenewTemplate(const IndexedTriangleMesh &        templateMesh,
+              const std::vector<TemplateMatch> & matches,
+              const ShapeModelSettings &         settings)
+{
+  if (matches.empty())
+  {
+    itkGenericExceptionMacro("A template is renewed from at least one match.");
+  }
+  std::vector<Shape> inTemplateFrame;
+  for (const TemplateMatch & match : matches)
+  {
+    if (match.corresponded.size() != templateMesh.points.size())
+    {
+      itkGenericExceptionMacro("A corresponded mesh has " << match.corresponded.size()
+                                                          << " points, the template " << templateMesh.points.size()
+                                                          << ": it was not matched to this template.");
+    }
+    inTemplateFrame.push_back(ApplySimilarity(match.templateToMesh.Inverse(), match.corresponded));
+  }
+  const Shape     mean = Mean(inTemplateFrame);
+  RenewedTemplate out;
+  out.gauge = AlignShape(mean, templateMesh.points, true);
+  out.points = ApplySimilarity(out.gauge, mean);
+  if (settings.nonRigid && settings.nonRigidSettings.preventFolds)
+  {
+    // The mean of surfaces free of self-intersections need not be: where it crosses or
+    // folds, the old template's points stay.
+    IndexedTriangleMesh renewed;
+    renewed.points = out.points;
+    renewed.triangles = templateMesh.triangles;
+    UndoFoldingMoves(
+      renewed, BuildMeshTopology(renewed), templateMesh.points, ValidityThresholds::DegenerateQAreaTolerance);
+    out.points = renewed.points;
+  }
+  out.change = RMSDistance(out.points, templateMesh.points);
+  return out;
+}
+
+void
+FinishShapeModel(ShapeModelBuildResult & result, double varianceFraction)
+{
+  CheckNumberOfTrainingMeshes(result.corresponded.size());
+  result.aligned = GeneralizedProcrustes(result.corresponded, true, &result.toModel);
+  result.model = BuildPrincipalComponents(result.aligned, varianceFraction);
+  result.allVariances = BuildPrincipalComponents(result.aligned, 1.0).variances;
+}
 
 ShapeModelBuildResult
 BuildShapeModel(const std::vector<IndexedTriangleMesh> & meshes,
@@ -427,9 +504,7 @@ BuildShapeModel(const std::vector<IndexedTriangleMesh> & meshes,
   }
   ShapeModelBuildResult result;
   TemplatePasses(meshes, settings, progress).Run(result);
-  result.aligned = GeneralizedProcrustes(result.corresponded, true, &result.toModel);
-  result.model = BuildPrincipalComponents(result.aligned, settings.varianceFraction);
-  result.allVariances = BuildPrincipalComponents(result.aligned, 1.0).variances;
+  FinishShapeModel(result, settings.varianceFraction);
   if (progress)
   {
     progress(1.0);

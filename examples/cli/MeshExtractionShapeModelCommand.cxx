@@ -23,11 +23,18 @@
 #include "MeshExtractionCLI.h"
 
 #include "itkLandmarkFreeShapeModelEstimator.h"
+#include "itkMeshExtractionJSON.h"
+#include "itkMeshExtractionLandmarkFile.h"
 #include "itkMeshExtractionPLY.h"
+#include "itkMeshExtractionShapeModelBuilder.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <random>
+#include <sstream>
 
 namespace MeshExtractionCLI
 {
@@ -57,6 +64,20 @@ ReadTrainingMesh(const std::string & path)
   return mesh;
 }
 
+/** A mesh on the model's topology: PLY by the module's writer, any other format by ITK's. */
+void
+WriteModelMesh(const std::string & path, const ME::IndexedTriangleMesh & mesh)
+{
+  if (std::filesystem::path(path).extension() == ".ply")
+  {
+    WriteWhole(path, [&mesh](const std::string & partial) { ME::WritePLYFile(partial, mesh); });
+    return;
+  }
+  auto out = IOMeshType::New();
+  ME::FillMesh(mesh, *out);
+  WriteMeshFile(out.GetPointer(), path);
+}
+
 /** Corresponded mesh i, named after its input, into `directory` (PLY or VTK after the input). */
 void
 WriteCorresponded(const Estimator & estimator, const std::vector<std::string> & inputs, const std::string & directory)
@@ -66,36 +87,70 @@ WriteCorresponded(const Estimator & estimator, const std::vector<std::string> & 
   {
     const std::filesystem::path input(inputs[i]);
     const bool                  ply = input.extension() == ".ply";
-    const std::string           path =
-      (std::filesystem::path(directory) / (input.stem().string() + (ply ? ".ply" : ".vtk"))).string();
-    const auto mesh = estimator.GetCorrespondedMesh(i);
-    if (ply)
-    {
-      WriteWhole(
-        path, [&mesh](const std::string & partial) { ME::WritePLYFile(partial, ME::MakeIndexedTriangleMesh(*mesh)); });
-    }
-    else
-    {
-      WriteMeshFile(mesh.GetPointer(), path);
-    }
+    WriteModelMesh((std::filesystem::path(directory) / (input.stem().string() + (ply ? ".ply" : ".vtk"))).string(),
+                   ME::MakeIndexedTriangleMesh(*estimator.GetCorrespondedMesh(i)));
   }
   std::cout << "corresponded meshes written to " << directory << '\n';
 }
 
-void
-PrintModel(const Estimator & estimator, double seconds)
+/** The model's summary (meshextraction shape-model build|finish --json): modes and
+ * variances at full precision, so that builds can be compared exactly. */
+struct ModelSummary
 {
-  const auto & variances = estimator.GetVariances();
+  std::vector<double> variances;    ///< of the kept modes
+  std::vector<double> allVariances; ///< all m - 1
+  double              totalVariance{ 0.0 };
+  std::size_t         pivot{ 0 };
+  std::size_t         passes{ 0 };
+  std::size_t         meshes{ 0 };
+};
+
+ModelSummary
+Summarize(const ME::detail::ShapeModelBuildResult & result)
+{
+  return { result.model.variances,         result.allVariances,           result.model.totalVariance,
+           result.pivot,                   result.templateChanges.size(), result.corresponded.size() };
+}
+
+void
+PrintModel(const ModelSummary & summary, double seconds)
+{
+  const double total = summary.totalVariance;
   std::cout << "model built in " << std::fixed << std::setprecision(1) << seconds << " s: pivot input "
-            << estimator.GetPivotIndex() << ", " << estimator.GetNumberOfPasses() << " template passes, "
-            << estimator.GetNumberOfModes() << " modes\ncumulative variance (%):";
+            << summary.pivot << ", " << summary.passes << " template passes, " << summary.variances.size()
+            << " modes\ncumulative variance (%):";
   double sum = 0.0;
-  for (std::size_t k = 0; k < variances.size(); ++k)
+  for (std::size_t k = 0; k < summary.variances.size(); ++k)
   {
-    sum += variances[k];
-    std::cout << ' ' << k + 1 << ':' << 100.0 * sum / estimator.GetTotalVariance();
+    sum += summary.variances[k];
+    std::cout << ' ' << k + 1 << ':' << 100.0 * sum / total;
   }
   std::cout << std::defaultfloat << '\n';
+}
+
+void
+WriteNumbers(std::ostream & out, const std::vector<double> & values)
+{
+  out << '[';
+  for (std::size_t k = 0; k < values.size(); ++k)
+  {
+    out << (k ? ", " : "") << ME::detail::JSONNumber{ values[k] };
+  }
+  out << ']';
+}
+
+void
+WriteSummary(const ModelSummary & summary, const std::string & path)
+{
+  WriteTextWhole(path, [&summary](std::ostream & out) {
+    const double total = summary.totalVariance;
+    out << std::setprecision(17) << "{\"modes\": " << summary.variances.size() << ", \"variances\": ";
+    WriteNumbers(out, summary.variances);
+    out << ", \"all_variances\": ";
+    WriteNumbers(out, summary.allVariances);
+    out << ", \"total_variance\": " << ME::detail::JSONNumber{ total } << ", \"pivot\": " << summary.pivot
+        << ", \"passes\": " << summary.passes << ", \"meshes\": " << summary.meshes << "}\n";
+  });
 }
 
 int
@@ -103,7 +158,8 @@ RunShapeModel(const Arguments & args)
 {
   auto                             estimator = Estimator::New();
   std::vector<IOMeshType::Pointer> meshes;
-  for (const std::string & path : args.positional)
+  const std::vector<std::string>   inputs(args.positional.begin() + 1, args.positional.end());
+  for (const std::string & path : inputs)
   {
     meshes.push_back(ReadTrainingMesh(path));
     estimator->AddInputMesh(meshes.back());
@@ -115,14 +171,434 @@ RunShapeModel(const Arguments & args)
   estimator->SetMaximumNumberOfPasses(static_cast<unsigned int>(args.GetInteger("passes", 2)));
   Stopwatch watch;
   estimator->Update();
-  PrintModel(*estimator, watch.Seconds());
+  ModelSummary summary;
+  summary.variances = estimator->GetVariances();
+  summary.pivot = estimator->GetPivotIndex();
+  summary.passes = estimator->GetNumberOfPasses();
+  summary.meshes = meshes.size();
+  summary.allVariances = estimator->GetAllVariances();
+  summary.totalVariance = estimator->GetTotalVariance();
+  PrintModel(summary, watch.Seconds());
   WriteWhole(args.Get("output"), [&estimator](const std::string & partial) { estimator->WriteModel(partial); });
   std::cout << "model written to " << args.Get("output") << '\n';
   if (args.Has("corresponded"))
   {
-    WriteCorresponded(*estimator, args.positional, args.Get("corresponded"));
+    WriteCorresponded(*estimator, inputs, args.Get("corresponded"));
+  }
+  if (args.Has("json"))
+  {
+    WriteSummary(summary, args.Get("json"));
   }
   return 0;
+}
+// ---- the steps of a build spread over processes (meshextraction-cohort shape-model) ----
+// prepare, match (per mesh, per pass), renew (the pass's reduction), finish (Procrustes
+// and PCA). Points travel between the steps as double-precision PLY and the similarities
+// as JSON numbers of 17 digits, so the steps give the model `build` gives.
+
+ME::detail::ShapeModelSettings
+SettingsOf(const Arguments & args)
+{
+  ME::detail::ShapeModelSettings settings;
+  settings.correspondence = ChooseOption(args, "correspondence", CorrespondenceNames(), Correspondence::PointToSurface);
+  settings.nonRigid = !args.Has("thesis");
+  settings.varianceFraction = args.GetDouble("variance-fraction", 0.95);
+  return settings;
+}
+
+/** A mesh a step wrote (or any mesh): PLY read as it is, in double precision (the CLI's
+ * itk::Mesh holds float coordinates, which would round what the steps pass on). */
+ME::IndexedTriangleMesh
+ReadStepMesh(const std::string & path)
+{
+  if (std::filesystem::path(path).extension() == ".ply")
+  {
+    return ME::ReadPLYFile(path);
+  }
+  return ME::MakeIndexedTriangleMesh(*ReadTrainingMesh(path));
+}
+
+/** A mesh made ready (PrepareTrainingMesh), named by its path in errors. */
+ME::IndexedTriangleMesh
+ReadPrepared(const std::string & path)
+{
+  return ME::detail::PrepareTrainingMesh(ReadStepMesh(path), "mesh " + path);
+}
+
+void
+WritePoints(const std::string & path, const ME::IndexedTriangleMesh & topology, const ME::detail::Shape & points)
+{
+  ME::IndexedTriangleMesh mesh;
+  mesh.points = points;
+  mesh.triangles = topology.triangles;
+  WriteWhole(path, [&mesh](const std::string & partial) { ME::WritePLYFile(partial, mesh, true); });
+}
+
+ME::JSONValue
+ReadJSONFile(const std::string & path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    itkGenericExceptionMacro(<< "Cannot read " << path << '.');
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ME::ParseJSON(text.str(), path);
+}
+
+const ME::JSONValue &
+Member(const ME::JSONValue & object, const std::string & name, const std::string & path)
+{
+  const ME::JSONValue * member = object.Find(name);
+  if (member == nullptr)
+  {
+    itkGenericExceptionMacro(<< path << " has no member \"" << name << "\".");
+  }
+  return *member;
+}
+
+double
+NumberOf(const ME::JSONValue & value, const std::string & what)
+{
+  if (value.kind != ME::JSONValue::Kind::Number || !std::isfinite(value.number))
+  {
+    itkGenericExceptionMacro(<< what << " must be a finite number.");
+  }
+  return value.number;
+}
+
+std::vector<double>
+NumbersOf(const ME::JSONValue & value, std::size_t count, const std::string & what)
+{
+  if (value.kind != ME::JSONValue::Kind::Array || value.elements.size() != count)
+  {
+    itkGenericExceptionMacro(<< what << " must be an array of " << count << " numbers.");
+  }
+  std::vector<double> numbers;
+  for (const ME::JSONValue & element : value.elements)
+  {
+    numbers.push_back(NumberOf(element, what));
+  }
+  return numbers;
+}
+
+ME::detail::SimilarityParameters
+ReadSimilarity(const std::string & path, const std::string & name)
+{
+  const ME::JSONValue      document = ReadJSONFile(path);
+  const ME::JSONValue &    object = Member(document, name, path);
+  ME::detail::SimilarityParameters t;
+  const std::vector<double>        rotation = NumbersOf(Member(object, "rotation", path), 9, path + ": rotation");
+  const std::vector<double>        translation =
+    NumbersOf(Member(object, "translation", path), 3, path + ": translation");
+  t.scale = NumberOf(Member(object, "scale", path), path + ": scale");
+  for (unsigned int k = 0; k < 9; ++k)
+  {
+    t.rotation[k / 3][k % 3] = rotation[k];
+  }
+  t.translation = ME::MakeVec3(translation[0], translation[1], translation[2]);
+  return t;
+}
+
+void
+WriteSimilarity(std::ostream & out, const ME::detail::SimilarityParameters & t)
+{
+  out << "{\"rotation\": [";
+  for (unsigned int k = 0; k < 9; ++k)
+  {
+    out << (k ? ", " : "") << ME::detail::JSONNumber{ t.rotation[k / 3][k % 3] };
+  }
+  out << "], \"scale\": " << ME::detail::JSONNumber{ t.scale } << ", \"translation\": ["
+      << ME::detail::JSONNumber{ t.translation[0] } << ", " << ME::detail::JSONNumber{ t.translation[1] } << ", "
+      << ME::detail::JSONNumber{ t.translation[2] } << "]}";
+}
+
+/** A match's state file: its similarity, E^2 and the corresponded mesh (read back). */
+ME::detail::TemplateMatch
+ReadMatchState(const std::string & path)
+{
+  const ME::JSONValue document = ReadJSONFile(path);
+  const ME::JSONValue & corresponded = Member(document, "corresponded", path);
+  if (corresponded.kind != ME::JSONValue::Kind::String)
+  {
+    itkGenericExceptionMacro(<< path << ": \"corresponded\" must name the corresponded mesh.");
+  }
+  ME::detail::TemplateMatch match;
+  match.templateToMesh = ReadSimilarity(path, "template_to_mesh");
+  match.e2 = NumberOf(Member(document, "e2", path), path + ": e2");
+  match.corresponded = ReadStepMesh(corresponded.text).points;
+  return match;
+}
+
+int
+RunPrepare(const Arguments & args)
+{
+  std::size_t         dropped = 0;
+  const std::string & input = args.positional[1];
+  // Read as build reads its inputs, so that both start from the same points.
+  const ME::IndexedTriangleMesh mesh =
+    ME::detail::PrepareTrainingMesh(ME::MakeIndexedTriangleMesh(*ReadTrainingMesh(input)), "mesh " + input, &dropped);
+  WritePoints(args.Get("output"), mesh, mesh.points);
+  std::cout << input << ": " << mesh.points.size() << " points, " << mesh.triangles.size() << " triangles ("
+            << dropped << " vertices of other components dropped)\n";
+  if (args.Has("json"))
+  {
+    WriteTextWhole(args.Get("json"), [&](std::ostream & out) {
+      out << "{\"points\": " << mesh.points.size() << ", \"triangles\": " << mesh.triangles.size()
+          << ", \"dropped_vertices\": " << dropped << "}\n";
+    });
+  }
+  return 0;
+}
+
+int
+RunMatch(const Arguments & args)
+{
+  if (args.Has("gauge") != args.Has("initial"))
+  {
+    throw UsageError("--initial and --gauge go together (the previous pass's state and renewal)");
+  }
+  const ME::IndexedTriangleMesh  templateMesh = ReadPrepared(args.positional[1]);
+  const ME::IndexedTriangleMesh  mesh = ReadPrepared(args.positional[2]);
+  const auto                     settings = SettingsOf(args);
+  ME::detail::SimilarityParameters initial;
+  if (args.Has("initial"))
+  {
+    initial = ME::detail::Compose(ReadSimilarity(args.Get("initial"), "template_to_mesh"),
+                                  ReadSimilarity(args.Get("gauge"), "gauge").Inverse());
+  }
+  Stopwatch                       watch;
+  const ME::detail::TemplateMatch match =
+    ME::detail::MatchTemplate(templateMesh, mesh, settings, args.Has("initial") ? &initial : nullptr);
+  const std::string output = std::filesystem::absolute(args.Get("output")).string();
+  WritePoints(output, templateMesh, match.corresponded);
+  WriteTextWhole(args.Get("json"), [&](std::ostream & out) {
+    out << std::setprecision(17) << "{\"e2\": " << ME::detail::JSONNumber{ match.e2 } << ", \"template_to_mesh\": ";
+    WriteSimilarity(out, match.templateToMesh);
+    out << ", \"corresponded\": " << ME::detail::JSONString{ output } << ", \"points\": " << match.corresponded.size()
+        << "}\n";
+  });
+  std::cout << args.positional[2] << " matched in " << std::fixed << std::setprecision(1) << watch.Seconds()
+            << " s: E^2 " << std::setprecision(4) << match.e2 << " mm^2\n";
+  return 0;
+}
+
+std::vector<ME::detail::TemplateMatch>
+ReadMatchStates(const Arguments & args)
+{
+  std::vector<ME::detail::TemplateMatch> matches;
+  for (std::size_t k = 2; k < args.positional.size(); ++k)
+  {
+    matches.push_back(ReadMatchState(args.positional[k]));
+  }
+  return matches;
+}
+
+int
+RunRenew(const Arguments & args)
+{
+  const ME::IndexedTriangleMesh     templateMesh = ReadPrepared(args.positional[1]);
+  const ME::detail::RenewedTemplate renewed =
+    ME::detail::RenewTemplate(templateMesh, ReadMatchStates(args), SettingsOf(args));
+  WritePoints(args.Get("output"), templateMesh, renewed.points);
+  WriteTextWhole(args.Get("json"), [&](std::ostream & out) {
+    out << std::setprecision(17) << "{\"change\": " << ME::detail::JSONNumber{ renewed.change } << ", \"gauge\": ";
+    WriteSimilarity(out, renewed.gauge);
+    out << "}\n";
+  });
+  std::cout << "template renewed from " << args.positional.size() - 2 << " meshes: it moved " << std::setprecision(4)
+            << renewed.change << " mm (RMS)\n";
+  return 0;
+}
+
+int
+RunFinish(const Arguments & args)
+{
+  const ME::IndexedTriangleMesh     templateMesh = ReadPrepared(args.positional[1]);
+  ME::detail::ShapeModelBuildResult result;
+  result.triangles = templateMesh.triangles;
+  result.pivot = static_cast<std::size_t>(args.GetInteger("pivot", 0));
+  for (const ME::detail::TemplateMatch & match : ReadMatchStates(args))
+  {
+    if (match.corresponded.size() != templateMesh.points.size())
+    {
+      itkGenericExceptionMacro(<< "A corresponded mesh has " << match.corresponded.size() << " points, the template "
+                               << templateMesh.points.size() << ": it was not matched to this template.");
+    }
+    result.corresponded.push_back(match.corresponded);
+    result.e2.push_back(match.e2);
+  }
+  result.templateChanges.assign(static_cast<std::size_t>(args.GetInteger("passes", 2)), 0.0);
+  Stopwatch watch;
+  ME::detail::FinishShapeModel(result, SettingsOf(args).varianceFraction);
+  const ModelSummary summary = Summarize(result);
+  PrintModel(summary, watch.Seconds());
+  WriteWhole(args.Get("output"),
+             [&result](const std::string & partial) { ME::detail::WriteShapeModel(partial, result); });
+  std::cout << "model written to " << args.Get("output") << '\n';
+  if (args.Has("json"))
+  {
+    WriteSummary(summary, args.Get("json"));
+  }
+  return 0;
+}
+
+// ---- using a model: sample and project ---------------------------------------------------
+
+/** A model file read back, as the builder's result (model and topology). */
+ME::detail::ShapeModelBuildResult
+ReadModel(const std::string & path)
+{
+  ME::detail::ShapeModelBuildResult result;
+  result.model = ME::detail::ReadStatismoModel(path, result.triangles);
+  return result;
+}
+
+/** Coefficients in standard deviations: --coefficients, or (--random-seed) drawn from the
+ * standard normal and kept within +-2 (thesis: |b_i| <= 2 sqrt(lambda_i)). */
+std::vector<double>
+CoefficientsOf(const Arguments & args, std::size_t modes)
+{
+  if (args.Has("random-seed"))
+  {
+    std::mt19937_64                  random(static_cast<std::uint64_t>(args.GetInteger("random-seed", 0)));
+    std::normal_distribution<double> normal;
+    std::vector<double>              b(modes);
+    for (double & x : b)
+    {
+      x = std::max(-2.0, std::min(2.0, normal(random)));
+    }
+    return b;
+  }
+  if (!args.Has("coefficients"))
+  {
+    return {};
+  }
+  const std::string text = args.Get("coefficients");
+  return args.GetNumbers("coefficients", 1 + static_cast<unsigned int>(std::count(text.begin(), text.end(), ',')));
+}
+
+int
+RunSample(const Arguments & args)
+{
+  if (args.Has("random-seed") && args.Has("coefficients"))
+  {
+    throw UsageError("give --coefficients or --random-seed, not both");
+  }
+  const ME::detail::ShapeModelBuildResult result = ReadModel(args.positional[1]);
+  const std::vector<double>               b = CoefficientsOf(args, result.model.NumberOfModes());
+  const ME::IndexedTriangleMesh           mesh =
+    ME::detail::ModelMesh(result, ME::detail::SynthesizeInStandardDeviations(result.model, b));
+  WriteModelMesh(args.Get("output"), mesh);
+  std::cout << "sample of " << result.model.NumberOfModes() << " modes at (standard deviations):";
+  for (double x : b)
+  {
+    std::cout << ' ' << x;
+  }
+  std::cout << (b.empty() ? " 0 (the mean)" : "") << "\nwritten to " << args.Get("output") << '\n';
+  return 0;
+}
+
+/** A new mesh's coefficients: the model's mean matched to it (similarity ICP and the
+ * correspondence of the build), aligned to the mean and projected; the residual is what
+ * the modes do not explain (RMS over the vertices, mm in the model's frame). */
+int
+RunProject(const Arguments & args)
+{
+  const ME::detail::ShapeModelBuildResult result = ReadModel(args.positional[1]);
+  ME::IndexedTriangleMesh                 mean = ME::detail::ModelMesh(result, result.model.mean);
+  const ME::IndexedTriangleMesh           mesh = ReadPrepared(args.positional[2]);
+  Stopwatch                               watch;
+  const ME::detail::TemplateMatch match = ME::detail::MatchTemplate(mean, mesh, SettingsOf(args), nullptr);
+  const std::vector<double>       b = ME::detail::ProjectInStandardDeviations(result, match.corresponded);
+  const ME::detail::Shape         aligned =
+    ME::detail::ApplySimilarity(ME::detail::AlignShape(match.corresponded, mean.points, true), match.corresponded);
+  const std::vector<double> reconstruction = ME::detail::SynthesizeInStandardDeviations(result.model, b);
+  double                    sum = 0.0;
+  for (std::size_t k = 0; k < aligned.size(); ++k)
+  {
+    sum += ME::SquaredNorm(aligned[k] -
+                           ME::MakeVec3(reconstruction[3 * k], reconstruction[3 * k + 1], reconstruction[3 * k + 2]));
+  }
+  const double residual = std::sqrt(sum / static_cast<double>(aligned.size()));
+  std::cout << args.positional[2] << " projected in " << std::fixed << std::setprecision(1) << watch.Seconds()
+            << " s: E^2 " << std::setprecision(4) << match.e2 << " mm^2, residual " << residual
+            << " mm (RMS)\ncoefficients (standard deviations):";
+  for (double x : b)
+  {
+    std::cout << ' ' << x;
+  }
+  std::cout << std::defaultfloat << '\n';
+  if (args.Has("output"))
+  {
+    mean.points = match.corresponded;
+    WritePoints(args.Get("output"), mean, mean.points);
+  }
+  if (args.Has("json"))
+  {
+    WriteTextWhole(args.Get("json"), [&](std::ostream & out) {
+      out << std::setprecision(17) << "{\"coefficients\": ";
+      WriteNumbers(out, b);
+      out << ", \"residual\": " << ME::detail::JSONNumber{ residual } << ", \"e2\": "
+          << ME::detail::JSONNumber{ match.e2 } << "}\n";
+    });
+  }
+  return 0;
+}
+
+/** The verbs of shape-model and how many positional arguments each takes (its own
+ * included); `build` is also the default, for the form without a verb. */
+struct Verb
+{
+  const char * name;
+  std::size_t  minimum;
+  std::size_t  maximum;
+  bool         needsJSON;
+  bool         needsOutput;
+  int (*run)(const Arguments &);
+};
+
+const std::vector<Verb> &
+Verbs()
+{
+  static const std::vector<Verb> verbs{
+    { "build", 3, 100000, false, true, RunShapeModel }, { "prepare", 2, 2, false, true, RunPrepare },
+    { "match", 3, 3, true, true, RunMatch },            { "renew", 3, 100000, true, true, RunRenew },
+    { "finish", 4, 100000, false, true, RunFinish },    { "sample", 2, 2, false, true, RunSample },
+    { "project", 3, 3, false, false, RunProject },
+  };
+  return verbs;
+}
+
+int
+RunVerb(const Arguments & given)
+{
+  Arguments args = given;
+  auto      verb = std::find_if(
+    Verbs().begin(), Verbs().end(), [&args](const Verb & v) { return args.positional.front() == v.name; });
+  if (verb == Verbs().end())
+  {
+    // The form without a verb: shape-model MESH MESH ... is build.
+    args.positional.insert(args.positional.begin(), "build");
+    verb = Verbs().begin();
+  }
+  if (args.positional.size() < verb->minimum || args.positional.size() > verb->maximum)
+  {
+    throw UsageError(std::string("shape-model ") + verb->name + " takes " +
+                     (verb->minimum == verb->maximum ? std::to_string(verb->minimum - 1)
+                                                     : "at least " + std::to_string(verb->minimum - 1)) +
+                     " input files; see --help");
+  }
+  if (verb->needsOutput && !args.Has("output"))
+  {
+    throw UsageError(std::string("shape-model ") + verb->name + ": --output is required");
+  }
+  if (verb->needsJSON && !args.Has("json"))
+  {
+    throw UsageError(std::string("shape-model ") + verb->name + ": --json STATE.json is required");
+  }
+  return verb->run(args);
 }
 } // namespace
 
@@ -132,28 +608,47 @@ MakeShapeModelCommand()
   Command c;
   c.name = "shape-model";
   c.summary = "build a landmark-free statistical shape model of closed meshes (ch. 7)";
-  c.usage = "MESH MESH [MESH...] --output MODEL.h5 [options]";
-  c.description = "Builds the shape model of the meshes (PLY, or any format ITK reads) with\n"
-                  "LandmarkFreeShapeModelEstimator: the symmetric similarity ICP of every mesh to a template (the\n"
-                  "mesh with most vertices, then the mean), a non-rigid correspondence stage (off with --thesis:\n"
-                  "the thesis' closest points), Procrustes analysis and PCA. Writes the model as a statismo HDF5\n"
-                  "file and, with --corresponded, each input on the model's topology in its own frame.";
+  c.usage = "[build] MESH MESH [MESH...] --output MODEL.h5 [options]\n"
+            "       meshextraction shape-model prepare MESH --output PREPARED.ply [--json INFO.json]\n"
+            "       meshextraction shape-model match TEMPLATE MESH --output CORRESPONDED.ply --json STATE.json\n"
+            "                                  [--initial STATE.json --gauge RENEWAL.json]\n"
+            "       meshextraction shape-model renew TEMPLATE STATE.json... --output TEMPLATE.ply --json RENEWAL.json\n"
+            "       meshextraction shape-model finish TEMPLATE STATE.json... --output MODEL.h5 [--pivot I --passes P]\n"
+            "       meshextraction shape-model sample MODEL.h5 --output MESH [--coefficients S,S,... | --random-seed N]\n"
+            "       meshextraction shape-model project MODEL.h5 MESH [--json B.json] [--output CORRESPONDED.ply]";
+  c.description =
+    "build: the shape model of the meshes (PLY, or any format ITK reads) with\n"
+    "LandmarkFreeShapeModelEstimator: the symmetric similarity ICP of every mesh to a template (the\n"
+    "mesh with most vertices, then the mean), a non-rigid correspondence stage (off with --thesis:\n"
+    "the thesis' closest points), Procrustes analysis and PCA. Writes the model as a statismo HDF5\n"
+    "file and, with --corresponded, each input on the model's topology in its own frame.\n\n"
+    "prepare, match, renew and finish are the steps of build, for builds spread over processes\n"
+    "(meshextraction-cohort shape-model runs them on Dask and gives the model build gives):\n"
+    "prepare makes a mesh ready (its largest component, outward); match matches TEMPLATE to one\n"
+    "prepared mesh (the first pass's template is the prepared mesh with most points) and writes\n"
+    "the template's points on it and its state (similarity, E^2); renew makes a pass's next\n"
+    "template from its states, in input order; finish makes the model from the last pass's states.\n"
+    "Points are written as double-precision PLY so that the steps lose nothing.\n\n"
+    "sample writes the model's shape at the given coefficients (standard deviations of each mode;\n"
+    "none: the mean), or at coefficients drawn from a standard normal within +-2. project matches\n"
+    "the model's mean to a new mesh as build does, and prints its coefficients and the residual\n"
+    "the modes leave (RMS, mm).";
   c.options = {
-    { "output", "FILE", "the model (statismo HDF5)", "" },
-    { "corresponded", "DIR", "write each input's corresponded mesh here, named after the input", "" },
+    { "output", "FILE", "the model (statismo HDF5); of a step, its mesh", "" },
+    { "json", "FILE", "build, finish: the model's summary; prepare, match, renew: the step's state", "" },
+    { "corresponded", "DIR", "build: write each input's corresponded mesh here, named after the input", "" },
     { "correspondence", "surface|point", "closest points on the triangles or the nearest vertices", "surface" },
     { "thesis", "", "no non-rigid stage: the thesis' closest-point correspondence", "" },
     { "variance-fraction", "F", "keep the modes that explain this fraction of the variance", "0.95" },
-    { "passes", "N", "at most this many template passes", "2" },
+    { "passes", "N", "build: at most this many template passes; finish: the passes run", "2" },
+    { "initial", "STATE.json", "match: this mesh's state of the previous pass", "" },
+    { "gauge", "RENEWAL.json", "match: the previous pass's renewal", "" },
+    { "pivot", "I", "finish: the pivot's index, for the model's description", "0" },
+    { "coefficients", "S,S,...", "sample: standard deviations of the first modes (--coefficients=-2,1)", "" },
+    { "random-seed", "N", "sample: coefficients drawn from a standard normal, within +-2", "" },
   };
   c.minimumPositional = 2;
-  c.run = [](const Arguments & args) {
-    if (!args.Has("output"))
-    {
-      throw UsageError("--output MODEL.h5 is required");
-    }
-    return RunShapeModel(args);
-  };
+  c.run = RunVerb;
   return c;
 }
 
