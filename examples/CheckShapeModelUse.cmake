@@ -1,7 +1,7 @@
-# meshextraction shape-model build, sample and project on three ellipsoid phantoms (the
+# meshextraction shape-model build, sample and project on four ellipsoid phantoms (the
 # ellipsoid phantom on grids of different spacings): the model's samples are closed,
 # valid surfaces; a training mesh projects with a small residual; bad coefficients are
-# refused. Arguments: -DMESHEXTRACTION=path -DWORK=dir.
+# refused; --report writes its page and renderings. Arguments: -DMESHEXTRACTION=path -DWORK=dir.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
@@ -22,7 +22,13 @@ foreach(spacing 1x1x1 1.25x1x1 1x1x1.3 1.15x1.1x1)
   run(0 "wrote" extract --phantom ellipsoid ${WORK}/e-${spacing}.ply --size 24 --spacing ${spacing})
   list(APPEND meshes ${WORK}/e-${spacing}.ply)
 endforeach()
-run(0 "model written" shape-model build ${meshes} --output ${WORK}/model.h5 --json ${WORK}/model.json)
+run(0 "model written" shape-model build ${meshes} --output ${WORK}/model.h5 --json ${WORK}/model.json
+  --report ${WORK}/report)
+foreach(file index.html compactness.svg mean.png mode1-minus2.png mode1-plus2.png)
+  if(NOT EXISTS ${WORK}/report/${file})
+    message(FATAL_ERROR "build --report wrote no ${file}")
+  endif()
+endforeach()
 run(0 "(the mean)" shape-model sample ${WORK}/model.h5 --output ${WORK}/mean.vtk)
 run(0 "valid closed surface: yes" quality ${WORK}/mean.vtk)
 run(0 "at (standard deviations): 2 -1" shape-model sample ${WORK}/model.h5 --output ${WORK}/s.vtk --coefficients=2,-1)

@@ -389,6 +389,10 @@ WriteJSON(const std::vector<MeasuredMesh> & meshes, const std::string & path);
 void
 WriteHistogramsCSV(const std::vector<MeasuredMesh> & meshes, const std::string & path);
 
+/** Text with the characters HTML gives a meaning (< > & ' ") escaped. */
+std::string
+HtmlEscape(const std::string & text);
+
 // ------------------------------------------------------------------------------
 // Rendering (MeshExtractionCLIRender.cxx): orthographic, z-buffered, flat-shaded
 // triangles, written as PNG through ITK, without a display or OpenGL.

@@ -250,4 +250,34 @@ Stopwatch::Seconds() const
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_Start).count();
 }
 
+std::string
+HtmlEscape(const std::string & text)
+{
+  std::string out;
+  for (char c : text)
+  {
+    switch (c)
+    {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
 } // namespace MeshExtractionCLI

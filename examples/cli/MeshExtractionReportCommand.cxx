@@ -34,36 +34,6 @@ namespace MeshExtractionCLI
 {
 namespace
 {
-std::string
-HtmlEscape(const std::string & text)
-{
-  std::string out;
-  for (char c : text)
-  {
-    switch (c)
-    {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 using HistogramMeasure = std::function<const ME::ValueStatistics &(const MeasuredMesh &)>;
 
 /** The geometry of a histogram chart. */

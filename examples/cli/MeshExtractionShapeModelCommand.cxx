@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -153,6 +154,132 @@ WriteSummary(const ModelSummary & summary, const std::string & path)
   });
 }
 
+/** The file names without folder and extensions (a.state.json: a), naming meshes in reports. */
+std::vector<std::string>
+Stems(const std::vector<std::string> & paths)
+{
+  std::vector<std::string> stems;
+  for (const std::string & path : paths)
+  {
+    const std::string name = std::filesystem::path(path).filename().string();
+    stems.push_back(name.substr(0, name.find('.')));
+  }
+  return stems;
+}
+
+/** The cumulative variance against the number of modes (thesis Fig. 7.2), as SVG. */
+void
+WriteCompactnessSVG(const std::vector<double> & allVariances, std::size_t kept, const std::string & path)
+{
+  WriteTextWhole(path, [&](std::ostream & out) {
+    const double width = 520, height = 300, left = 50, top = 30, plotWidth = 440, plotHeight = 220;
+    double       total = 0.0;
+    for (double v : allVariances)
+    {
+      total += v;
+    }
+    const std::size_t n = allVariances.size();
+    const auto        x = [&](double k) { return left + plotWidth * k / static_cast<double>(n); };
+    const auto        y = [&](double percent) { return top + plotHeight * (1.0 - percent / 100.0); };
+    out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
+        << "' font-family='sans-serif' font-size='11'>\n<text x='" << left
+        << "' y='18' font-size='13'>Cumulative variance (%) against the number of modes</text>\n"
+        << "<rect x='" << left << "' y='" << top << "' width='" << plotWidth << "' height='" << plotHeight
+        << "' fill='none' stroke='#999'/>\n";
+    for (int percent = 0; percent <= 100; percent += 20)
+    {
+      out << "<text x='" << left - 6 << "' y='" << y(percent) + 4 << "' text-anchor='end'>" << percent << "</text>\n";
+    }
+    out << "<polyline fill='none' stroke='#4e79a7' stroke-width='2' points='" << x(0) << ',' << y(0);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      sum += allVariances[k];
+      out << ' ' << x(k + 1) << ',' << y(100.0 * sum / total);
+    }
+    out << "'/>\n";
+    sum = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      sum += allVariances[k];
+      out << "<circle cx='" << x(k + 1) << "' cy='" << y(100.0 * sum / total) << "' r='3' fill='"
+          << (k < kept ? "#4e79a7" : "#bbb") << "'/>\n<text x='" << x(k + 1) << "' y='" << top + plotHeight + 14
+          << "' text-anchor='middle'>" << k + 1 << "</text>\n";
+    }
+    out << "</svg>\n";
+  });
+}
+
+/** An HTML page of the model: compactness, the variance table, and renderings of the
+ * mean and of the first modes at -2 and +2 standard deviations. */
+void
+WriteModelReport(const ModelSummary &                                                     summary,
+                 const std::function<ME::IndexedTriangleMesh(const std::vector<double> &)> & synthesize,
+                 const std::vector<double> &                                               e2,
+                 const std::vector<std::string> &                                          names,
+                 const std::string &                                                       directory)
+{
+  std::filesystem::create_directories(directory);
+  const std::size_t modes = summary.variances.size();
+  WriteCompactnessSVG(summary.allVariances, modes, directory + "/compactness.svg");
+  RenderOptions view;
+  view.width = 360;
+  view.height = 300;
+  const auto render = [&](const std::vector<double> & b, const std::string & file) {
+    RenderMesh(synthesize(b), view, directory + "/" + file);
+  };
+  render({}, "mean.png");
+  const std::size_t points = synthesize({}).points.size();
+  const std::size_t shown = std::min<std::size_t>(3, modes);
+  for (std::size_t mode = 0; mode < shown; ++mode)
+  {
+    for (const double s : { -2.0, 2.0 })
+    {
+      std::vector<double> b(mode + 1, 0.0);
+      b[mode] = s;
+      render(b, "mode" + std::to_string(mode + 1) + (s < 0 ? "-minus2.png" : "-plus2.png"));
+    }
+  }
+  WriteTextWhole(directory + "/index.html", [&](std::ostream & out) {
+    out << "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>Shape model</title>\n"
+        << "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
+        << "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}</style></head><body>\n"
+        << "<h1>Shape model</h1>\n<p>" << summary.meshes << " meshes, pivot "
+        << HtmlEscape(summary.pivot < names.size() ? names[summary.pivot] : std::to_string(summary.pivot)) << ", "
+        << summary.passes << " template passes, " << points << " points, " << modes << " modes kept.</p>\n<h2>Compactness</h2>\n<img src='compactness.svg'>\n"
+        << "<table><tr><th>mode</th><th>variance (mm&sup2;)</th><th>%</th><th>cumulative %</th></tr>\n";
+    double sum = 0.0;
+    for (std::size_t k = 0; k < summary.allVariances.size(); ++k)
+    {
+      sum += summary.allVariances[k];
+      out << "<tr><td>" << k + 1 << (k < modes ? "" : " (not kept)") << "</td><td>" << std::setprecision(6)
+          << summary.allVariances[k] << "</td><td>" << std::fixed << std::setprecision(1)
+          << 100.0 * summary.allVariances[k] / summary.totalVariance << "</td><td>"
+          << 100.0 * sum / summary.totalVariance << "</td></tr>\n"
+          << std::defaultfloat;
+    }
+    out << "</table>\n<h2>The mean and the first modes at &minus;2 and +2 standard deviations</h2>\n"
+        << "<p><img src='mean.png' title='mean'></p>\n";
+    for (std::size_t mode = 0; mode < shown; ++mode)
+    {
+      out << "<p>mode " << mode + 1 << ": <img src='mode" << mode + 1 << "-minus2.png'> <img src='mode" << mode + 1
+          << "-plus2.png'></p>\n";
+    }
+    if (!e2.empty())
+    {
+      out << "<h2>Similarity ICP of the last pass</h2>\n<table><tr><th>mesh</th><th>E&sup2; (mm&sup2;)</th></tr>\n";
+      for (std::size_t i = 0; i < e2.size(); ++i)
+      {
+        out << "<tr><td>" << HtmlEscape(i < names.size() ? names[i] : std::to_string(i)) << "</td><td>"
+            << std::setprecision(4) << e2[i] << "</td></tr>\n";
+      }
+      out << "</table>\n";
+    }
+    out << "</body></html>\n";
+  });
+  std::cout << "report written to " << directory << "/index.html\n";
+}
+
 int
 RunShapeModel(const Arguments & args)
 {
@@ -179,6 +306,15 @@ RunShapeModel(const Arguments & args)
   summary.allVariances = estimator->GetAllVariances();
   summary.totalVariance = estimator->GetTotalVariance();
   PrintModel(summary, watch.Seconds());
+  if (args.Has("report"))
+  {
+    WriteModelReport(
+      summary,
+      [&estimator](const std::vector<double> & b) { return ME::MakeIndexedTriangleMesh(*estimator->Synthesize(b)); },
+      {},
+      Stems(inputs),
+      args.Get("report"));
+  }
   WriteWhole(args.Get("output"), [&estimator](const std::string & partial) { estimator->WriteModel(partial); });
   std::cout << "model written to " << args.Get("output") << '\n';
   if (args.Has("corresponded"))
@@ -434,6 +570,17 @@ RunFinish(const Arguments & args)
   ME::detail::FinishShapeModel(result, SettingsOf(args).varianceFraction);
   const ModelSummary summary = Summarize(result);
   PrintModel(summary, watch.Seconds());
+  if (args.Has("report"))
+  {
+    WriteModelReport(
+      summary,
+      [&result](const std::vector<double> & b) {
+        return ME::detail::ModelMesh(result, ME::detail::SynthesizeInStandardDeviations(result.model, b));
+      },
+      result.e2,
+      Stems({ args.positional.begin() + 2, args.positional.end() }),
+      args.Get("report"));
+  }
   WriteWhole(args.Get("output"),
              [&result](const std::string & partial) { ME::detail::WriteShapeModel(partial, result); });
   std::cout << "model written to " << args.Get("output") << '\n';
@@ -637,6 +784,7 @@ MakeShapeModelCommand()
     { "output", "FILE", "the model (statismo HDF5); of a step, its mesh", "" },
     { "json", "FILE", "build, finish: the model's summary; prepare, match, renew: the step's state", "" },
     { "corresponded", "DIR", "build: write each input's corresponded mesh here, named after the input", "" },
+    { "report", "DIR", "build, finish: an HTML page of the model (compactness, the modes rendered)", "" },
     { "correspondence", "surface|point", "closest points on the triangles or the nearest vertices", "surface" },
     { "thesis", "", "no non-rigid stage: the thesis' closest-point correspondence", "" },
     { "variance-fraction", "F", "keep the modes that explain this fraction of the variance", "0.95" },
