@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Benchmark of meshextraction-cohort (not a test): throughput of 1 and 2 LocalCluster workers
 on a synthetic cohort, the overhead per case, and, with --head-ct, the time and memory of one
-real head CT, from which doc/cohort.md estimates a cohort of 1,000 on N workers.
+real head CT, from which doc/cohort.md estimates a cohort of 1,000 on N workers; with
+--shape-model-meshes N, the shape model of N synthetic meshes on 1 and 2 workers.
 
   /usr/bin/python3 tools/cohort/benchmark.py --meshextraction build/examples/meshextraction \\
       [--count 24] [--size-range 112 160] [--options '--quality high'] [--repeats 2] \\
-      [--head-ct results/data/cranium.nhdr --head-ct-iso 300]
+      [--head-ct results/data/cranium.nhdr --head-ct-iso 300] [--shape-model-meshes 12]
 
 Every case runs the tool with --threads 1 (the tool's own threads would otherwise use the
 cores the second worker is meant to use). Figures per run:
@@ -180,6 +181,29 @@ def estimate(record, best, cases=1000):
         print(f"  {workers:>4} workers: {seconds / 3600:6.2f} h, {rate:6.1f} MB/s to and from the shared file system")
 
 
+def shape_model_benchmark(args):
+    """`shape-model` (--force) of N synthetic closed meshes on 1 and 2 workers: the end-to-end
+    time, the steps' own time, and the speedup."""
+    cells = [args.shape_model_cells + k % 5 for k in range(args.shape_model_meshes)]
+    meshes = synthetic.make_shape_population(os.path.join(args.work, "shapes"), cells=cells)
+    print(f"shape model of {len(meshes)} meshes of {6 * min(cells) ** 2 + 2}-{6 * max(cells) ** 2 + 2} vertices:")
+    print("workers  end-to-end s  steps s  steps  speedup")
+    first = None
+    for workers in (1, 2):
+        outdir = os.path.join(args.work, f"shape-model-{workers}")
+        command = [sys.executable, os.path.join(HERE, "meshextraction-cohort"), "shape-model", *meshes, outdir]
+        command += ["--meshextraction", args.meshextraction, "--workers", str(workers), "--force"]
+        started = time.monotonic()
+        result = subprocess.run(command, capture_output=True, text=True)
+        end_to_end = time.monotonic() - started
+        if result.returncode != 0:
+            sys.exit(f"benchmark: the shape model failed:\n{result.stdout}\n{result.stderr}")
+        steps = json.load(open(os.path.join(outdir, "shape-model.json")))["steps"]
+        first = first or end_to_end
+        seconds = sum(step["wall_seconds"] for step in steps)
+        print(f"{workers:>7}  {end_to_end:12.2f}  {seconds:7.2f}  {len(steps):5}  {first / end_to_end:7.2f}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--meshextraction", required=True)
@@ -191,6 +215,8 @@ def main():
     parser.add_argument("--head-ct", help="e.g. results/data/cranium.nhdr (scripts/prepare-data.sh makes it)")
     parser.add_argument("--head-ct-iso", default="300")
     parser.add_argument("--head-ct-options", default="--quality high")
+    parser.add_argument("--shape-model-meshes", type=int, default=0, help="also the shape model of this many meshes")
+    parser.add_argument("--shape-model-cells", type=int, default=20, help="their resolution (6 cells^2 + 2 vertices)")
     args = parser.parse_args()
     args.meshextraction = os.path.abspath(args.meshextraction)
     args.work = os.path.abspath(args.work or tempfile.mkdtemp(prefix="cohort-benchmark-"))
@@ -204,6 +230,8 @@ def main():
     if args.head_ct:
         record, _ = head_ct_benchmark(args)
         estimate(record, best)
+    if args.shape_model_meshes:
+        shape_model_benchmark(args)
 
 
 if __name__ == "__main__":

@@ -11,13 +11,23 @@ OUTDIR/
   summary.csv, summary.json         one row per case; the totals
   report.html                       the cohort report
 
+The shape model (`shape-model`, model_runner) writes its steps' outputs (prepared/,
+pass-P/, model.h5, model.json; see model_runner) and, per step, the record and the log:
+
+  steps/STEP/STEP.result.json       the step's record, written last: the fingerprint of
+                                    its command and inputs, the SHA-256 of its outputs
+  steps/STEP/STEP.log               the command, its output, status, time and memory
+
 Every file is written in a temporary place and renamed into place (os.replace, atomic on
 POSIX file systems), so a reader never sees half a file, and the record is renamed last.
 """
 
+import contextlib
+import glob
 import hashlib
 import json
 import os
+import shutil
 
 RECORD_VERSION = 1
 
@@ -32,6 +42,35 @@ def record_path(outdir, case_id):
 
 def log_path(outdir, case_id):
     return os.path.join(case_dir(outdir, case_id), f"{case_id}.log")
+
+
+def step_dir(outdir, step):
+    return os.path.join(outdir, "steps", step)
+
+
+def step_record_path(outdir, step):
+    return os.path.join(step_dir(outdir, step), f"{step}.result.json")
+
+
+def link_atomically(source, path):
+    """Makes `path` the same file as `source` (a hard link; a copy where the file system
+    has none), replacing what was there in one rename."""
+    temporary = f"{path}.tmp-{os.getpid()}"
+    try:
+        os.link(source, temporary)
+    except OSError:
+        shutil.copyfile(source, temporary)
+    os.replace(temporary, path)
+
+
+def remove_partial_files(path):
+    """Removes the partial files the command-line tool leaves for `path` when it is killed
+    while writing it (.STEM.partial-TAG.EXT, renamed to `path` when complete)."""
+    folder, name = os.path.split(path)
+    stem, extension = os.path.splitext(name)
+    for partial in glob.glob(os.path.join(glob.escape(folder), f".{glob.escape(stem)}.partial-*{extension}")):
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(partial)
 
 
 def write_json_atomically(path, document):
@@ -108,18 +147,27 @@ def quality_of(quality_json):
     return document[0].get("quality")
 
 
-def verify(outdir, case_id, fingerprint):
-    """(record, None) when the case's outputs are complete and sound: the record says ok,
-    was made from the same case specification, every mesh's quality JSON says valid, and
-    every mesh has the checksum it had when it was measured and reads back. Otherwise
-    (None, why not)."""
-    record = read_json(record_path(outdir, case_id))
+def _current_record(path, fingerprint, changed):
+    """(the record at path, None) when it says ok and has this fingerprint and version;
+    otherwise (None, why not: `changed` for another fingerprint)."""
+    record = read_json(path)
     if record is None:
         return None, "no result"
     if record.get("status") != "ok":
         return None, f"last run {record.get('status')}"
     if record.get("fingerprint") != fingerprint or record.get("version") != RECORD_VERSION:
-        return None, "the case or its options changed"
+        return None, changed
+    return record, None
+
+
+def verify(outdir, case_id, fingerprint):
+    """(record, None) when the case's outputs are complete and sound: the record says ok,
+    was made from the same case specification, every mesh's quality JSON says valid, and
+    every mesh has the checksum it had when it was measured and reads back. Otherwise
+    (None, why not)."""
+    record, why = _current_record(record_path(outdir, case_id), fingerprint, "the case or its options changed")
+    if record is None:
+        return None, why
     directory = case_dir(outdir, case_id)
     for surface in record.get("surfaces", []):
         mesh = os.path.join(directory, surface["mesh"])
@@ -133,4 +181,21 @@ def verify(outdir, case_id, fingerprint):
             return None, f"{surface['mesh']} missing"
         if not mesh_reads(mesh, quality):
             return None, f"{surface['mesh']} does not read"
+    return record, None
+
+
+def verify_step(outdir, step, fingerprint):
+    """(record, None) when a shape model step's outputs are complete and current: its record
+    says ok, has the fingerprint of the step's command and inputs, and every output has the
+    checksum it had when the step wrote it (and so reads as it did then). Otherwise (None,
+    why not)."""
+    record, why = _current_record(step_record_path(outdir, step), fingerprint, "its command or inputs changed")
+    if record is None:
+        return None, why
+    for name, digest in record.get("outputs", {}).items():
+        try:
+            if sha256(os.path.join(outdir, name)) != digest:
+                return None, f"{name} changed since it was written"
+        except OSError:
+            return None, f"{name} missing"
     return record, None

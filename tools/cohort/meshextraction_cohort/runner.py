@@ -21,15 +21,15 @@ import signal
 import time
 import uuid
 
-from . import outputs, report, task
+from . import model_task, outputs, report, task
 
 
-def _say(text):
+def say(text):
     print(f"meshextraction-cohort: {text}", flush=True)
 
 
 @contextlib.contextmanager
-def _exclusive(outdir):
+def exclusive(outdir):
     """One run at a time per output folder (a lock that dies with its process)."""
     os.makedirs(outdir, exist_ok=True)
     with open(os.path.join(outdir, ".lock"), "w") as lock:
@@ -77,10 +77,11 @@ def dask_client(args):
 
     # Ship this package's code with each task, so the workers of an existing cluster need
     # only Dask, not this package on their Python path. Dask pickles a function by value only
-    # when its own module is registered, so the task's module is registered besides the
-    # package (whose registration covers the modules the task uses).
+    # when its own module is registered, so the tasks' modules are registered besides the
+    # package (whose registration covers the modules the tasks use).
     cloudpickle.register_pickle_by_value(importlib.import_module(__package__))
     cloudpickle.register_pickle_by_value(task)
+    cloudpickle.register_pickle_by_value(model_task)
     cluster = None
     if args.scheduler or args.scheduler_file:
         client = distributed.Client(args.scheduler, scheduler_file=args.scheduler_file, timeout="60s")
@@ -139,7 +140,7 @@ def _failure_record(case, fingerprint, run_id, message):
     }
 
 
-def _task_error(error, retries):
+def task_error(error, retries):
     from distributed.scheduler import KilledWorker
 
     if isinstance(error, KilledWorker):
@@ -182,7 +183,7 @@ def _compute(client, todo, args, run_id, records):
             try:
                 record = future.result()
             except Exception as error:  # the task's own exception after its retries, or KilledWorker
-                record = _failure_record(case, fingerprint, run_id, _task_error(error, args.retries))
+                record = _failure_record(case, fingerprint, run_id, task_error(error, args.retries))
                 directory = outputs.case_dir(args.outdir, case.case_id)
                 os.makedirs(directory, exist_ok=True)
                 outputs.write_json_atomically(outputs.record_path(args.outdir, case.case_id), record)
@@ -191,15 +192,15 @@ def _compute(client, todo, args, run_id, records):
             pending.discard(case.case_id)
             print(_progress_line(done, len(todo), record), flush=True)
     except KeyboardInterrupt:
-        _say(f"interrupted: {len(todo) - len(pending)} of {len(todo)} cases finished; cancelling the rest")
+        say(f"interrupted: {len(todo) - len(pending)} of {len(todo)} cases finished; cancelling the rest")
         client.cancel(list(futures))
     return pending
 
 
-def _remove_attempts(outdir, run_id):
+def remove_attempts(outdir, run_id, tasks="cases"):
     """After the LocalCluster is closed no task of this run is running: remove the attempt
-    folders that cancelled tasks left."""
-    for folder in glob.glob(os.path.join(outdir, "cases", "*", f".attempt-{run_id}-*")):
+    folders that cancelled tasks left in the tasks' folders (OUTDIR/cases/*, OUTDIR/steps/*)."""
+    for folder in glob.glob(os.path.join(outdir, tasks, "*", f".attempt-{run_id}-*")):
         shutil.rmtree(folder, ignore_errors=True)
 
 
@@ -218,41 +219,41 @@ def _adopt_committed(outdir, todo, pending, run_id, records):
     return pending - set(records)
 
 
-def _raise_interrupt(signum, frame):
+def raise_interrupt(signum, frame):
     raise KeyboardInterrupt
 
 
 def run(cases, args):
     """The `run` command; returns the exit status (0 all ok, 1 some failed, 130 interrupted)."""
-    signal.signal(signal.SIGTERM, _raise_interrupt)
+    signal.signal(signal.SIGTERM, raise_interrupt)
     run_id = time.strftime("%Y%m%dT%H%M%S") + "-" + uuid.uuid4().hex[:6]
     started = time.time()
-    with _exclusive(args.outdir):
+    with exclusive(args.outdir):
         planned = plan(cases, args.outdir, args.common_options, args.force)
         records = {c.case_id: dict(r, computed=False) for c, _, r, _ in planned if r is not None}
         todo = [p for p in planned if p[2] is None]
-        _say(f"{len(cases)} cases; {len(records)} with verified outputs kept, {len(todo)} to run")
+        say(f"{len(cases)} cases; {len(records)} with verified outputs kept, {len(todo)} to run")
         pending, description = set(), "nothing to run"
         if todo:
             try:
                 with dask_client(args) as (client, description):
-                    _say(f"{description}; retries {args.retries}")
+                    say(f"{description}; retries {args.retries}")
                     if client.dashboard_link and args.dashboard:
-                        _say(f"Dask dashboard: {client.dashboard_link}")
+                        say(f"Dask dashboard: {client.dashboard_link}")
                     pending = _compute(client, todo, args, run_id, records)
             except KeyboardInterrupt:
                 pending = {c.case_id for c, _, _, _ in todo} - set(records)
-                _say("interrupted while starting or stopping the cluster")
+                say("interrupted while starting or stopping the cluster")
             if not (args.scheduler or args.scheduler_file):
-                _remove_attempts(args.outdir, run_id)
+                remove_attempts(args.outdir, run_id)
             pending = _adopt_committed(args.outdir, todo, pending, run_id, records)
         totals = report.write_all(args, cases, records, pending, description, started, run_id)
-    _say(
+    say(
         f"{totals['succeeded']} succeeded ({totals['reused']} kept from earlier runs), {totals['failed']} failed, "
         f"{totals['retried']} retried, {totals['not_run']} not run; "
         f"{os.path.join(args.outdir, 'summary.csv')}, {os.path.join(args.outdir, 'report.html')}"
     )
     if pending:
-        _say("rerun the same command to compute the rest")
+        say("rerun the same command to compute the rest")
         return 130
     return 1 if totals["failed"] else 0

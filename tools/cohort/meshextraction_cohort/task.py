@@ -147,18 +147,18 @@ def run_step(name, command, cwd, log, timeout=None, threads=None):
     return step
 
 
-def _start_attempt(directory, run_id):
-    """Removes what earlier attempts left (a dead worker's folder, a stale record) and
-    makes this attempt's folder; the number counts this run's earlier attempts."""
+def start_attempt(directory, run_id):
+    """Removes what earlier attempts left in a task's folder (a dead worker's attempt
+    folder, a stale record, named after the folder) and makes this attempt's folder; the
+    number counts this run's earlier attempts."""
     os.makedirs(directory, exist_ok=True)
     earlier = [d for d in os.listdir(directory) if d.startswith(".attempt-")]
     number = 1 + sum(d.startswith(f".attempt-{run_id}-") for d in earlier)
     for d in earlier:
         shutil.rmtree(os.path.join(directory, d), ignore_errors=True)
-    case_id = os.path.basename(directory)
-    for stale in (f"{case_id}.result.json",):
-        if os.path.exists(os.path.join(directory, stale)):
-            os.unlink(os.path.join(directory, stale))
+    stale = os.path.join(directory, f"{os.path.basename(directory)}.result.json")
+    if os.path.exists(stale):
+        os.unlink(stale)
     attempt = os.path.join(directory, f".attempt-{run_id}-{uuid.uuid4().hex[:8]}")
     os.mkdir(attempt)
     outputs.write_json_atomically(
@@ -226,7 +226,7 @@ def _extract_surface(job, surface, attempt, log):
     return steps, summary, None
 
 
-def _worker_address():
+def worker_address():
     try:
         from distributed import get_worker
 
@@ -235,29 +235,30 @@ def _worker_address():
         return None
 
 
-def _commit(directory, attempt, record, planned_files):
-    """Moves the attempt's files into the case folder, the record last. A failed case
-    removes the outputs an earlier run left for it, so nothing looks done that is not."""
-    case_id = record["case"]
+def commit(directory, attempt, record, planned_files):
+    """Moves the attempt's files into the task's folder, then its log and its record, both
+    named after the folder, the record last. A failed task removes the outputs an earlier
+    run left for it, so nothing looks done that is not."""
+    task_id = os.path.basename(directory)
     for name in planned_files:
         if record["status"] == "ok":
             os.replace(os.path.join(attempt, name), os.path.join(directory, name))
         elif os.path.exists(os.path.join(directory, name)):
             os.unlink(os.path.join(directory, name))
-    os.replace(os.path.join(attempt, f"{case_id}.log"), os.path.join(directory, f"{case_id}.log"))
-    outputs.write_json_atomically(os.path.join(attempt, f"{case_id}.result.json"), record)
-    os.replace(os.path.join(attempt, f"{case_id}.result.json"), os.path.join(directory, f"{case_id}.result.json"))
+    os.replace(os.path.join(attempt, f"{task_id}.log"), os.path.join(directory, f"{task_id}.log"))
+    outputs.write_json_atomically(os.path.join(attempt, f"{task_id}.result.json"), record)
+    os.replace(os.path.join(attempt, f"{task_id}.result.json"), os.path.join(directory, f"{task_id}.result.json"))
 
 
 def run_case(job):
     """The Dask task: one case, start to commit. Returns the case's record."""
     case_id = job["case"]["case"]
     directory = outputs.case_dir(job["outdir"], case_id)
-    number, attempt = _start_attempt(directory, job["run_id"])
+    number, attempt = start_attempt(directory, job["run_id"])
     started = time.time()
     steps, surfaces, failure = [], [], None
     with open(os.path.join(attempt, f"{case_id}.log"), "wb") as log:
-        log.write(f"# case {case_id}, attempt {number}, worker {_worker_address()} pid {os.getpid()}\n".encode())
+        log.write(f"# case {case_id}, attempt {number}, worker {worker_address()} pid {os.getpid()}\n".encode())
         log.write(f"# case specification: {json.dumps(job['case'], sort_keys=True)}\n\n".encode())
         for surface in job["surfaces"]:
             surface_steps, summary, failure = _extract_surface(job, surface, attempt, log)
@@ -276,7 +277,7 @@ def run_case(job):
         "status": "failed" if failure else "ok",
         "message": failure,
         "attempts": number,
-        "worker": _worker_address(),
+        "worker": worker_address(),
         "host": socket.gethostname(),
         "pid": os.getpid(),
         "started": round(started, 3),
@@ -289,6 +290,6 @@ def run_case(job):
     planned = [
         f"{s['name']}{suffix}" for s in job["surfaces"] for suffix in (f".{job['mesh_format']}", ".quality.json")
     ]
-    _commit(directory, attempt, record, planned)
+    commit(directory, attempt, record, planned)
     shutil.rmtree(attempt, ignore_errors=True)
     return record

@@ -1,6 +1,7 @@
 """Tests of meshextraction-cohort on a LocalCluster: a synthetic cohort of random phantoms plus
 one corrupt image; a worker killed by pid in the middle of a run; the client interrupted and
-rerun; the same outputs for 1 and 2 workers; the manifest reader.
+rerun; the same outputs for 1 and 2 workers; the manifest reader; the shape model of a
+population of meshes against the in-process build, resumed, and with a bad input.
 
   python3 test_cohort.py MESHEXTRACTION WORKDIR [unittest arguments, e.g. WorkerKilledTest]
 
@@ -13,6 +14,7 @@ import json
 import os
 import shutil
 import signal
+import struct
 import subprocess
 import sys
 import tempfile
@@ -355,11 +357,15 @@ class TimeoutTest(unittest.TestCase):
 
 
 class CommandLineTest(unittest.TestCase):
-    def test_shape_model_is_not_yet(self):
-        result = subprocess.run(cohort_command("shape-model", "manifest.csv"), capture_output=True, text=True)
+    def test_shape_model_usage(self):
+        result = subprocess.run(cohort_command("shape-model", "a.ply"), capture_output=True, text=True)
         self.assertEqual(result.returncode, 2)
-        self.assertIn("not yet on Dask", result.stderr)
-        self.assertIn("meshextraction shape-model MESH... --output MODEL.h5", result.stderr)
+        self.assertIn("required: OUTDIR", result.stderr)
+        result = subprocess.run(
+            cohort_command("shape-model", "a.ply", "b.ply", "--meshextraction", TOOL), capture_output=True, text=True
+        )
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("OUTDIR b.ply is a file or named like a mesh: give the output folder last", result.stderr)
 
     def test_bad_manifest(self):
         work = fresh_dir("bad-manifest")
@@ -429,6 +435,238 @@ class ManifestTest(unittest.TestCase):
                 manifest.read_manifest(self.write("m.csv", text))
         with self.assertRaisesRegex(manifest.ManifestError, "not valid JSON"):
             manifest.read_manifest(self.write("m.json", "{"))
+
+    def test_training_meshes(self):
+        """A shape model's inputs: mesh files, a manifest (case, mesh), a run's OUTDIR."""
+        for name in ("a.ply", "b.vtk", "sub/c.stl", "d.ply", "other/a.ply"):
+            os.makedirs(os.path.dirname(os.path.join(self.directory, name)), exist_ok=True)
+            self.write(name, "")
+        meshes, left_out = manifest.read_training_meshes([self.write("a.ply", ""), self.write("b.vtk", "")])
+        here = self.directory
+        self.assertEqual(meshes, [("a", os.path.join(here, "a.ply")), ("b", os.path.join(here, "b.vtk"))])
+        self.assertEqual(left_out, [])
+        path = self.write("m.csv", "case,mesh\nx,sub/c.stl\ny,a.ply\n")
+        meshes, _ = manifest.read_training_meshes([path])
+        self.assertEqual(meshes, [("x", os.path.join(here, "sub", "c.stl")), ("y", os.path.join(here, "a.ply"))])
+        document = {"cases": [{"case": "p", "mesh": "d.ply"}, {"case": "q", "mesh": "b.vtk"}]}
+        meshes, _ = manifest.read_training_meshes([self.write("m.json", json.dumps(document))])
+        self.assertEqual([name for name, _ in meshes], ["p", "q"])
+        for inputs, message in (
+            (["a.ply"], "needs at least two meshes; the input gives 1"),
+            (["a.ply", "other/a.ply"], "two inputs are named 'a'"),
+            (["a.ply", "missing.ply"], "missing: .*missing.ply: no such mesh file"),
+            (["a.ply", "m.txt"], "not a mesh file"),
+        ):
+            with self.assertRaisesRegex(manifest.ManifestError, message):
+                manifest.read_training_meshes([os.path.join(self.directory, i) for i in inputs])
+        with self.assertRaisesRegex(manifest.ManifestError, "unknown field.*image"):
+            manifest.read_training_meshes([self.write("n.csv", "case,image\nx,a.ply\n")])
+
+    def test_training_meshes_of_a_run(self):
+        """A run's OUTDIR: the mesh of every case that succeeded; a case with a mesh per label
+        is refused."""
+        outdir = os.path.join(self.directory, "run")
+        surfaces = {"c1": ["c1"], "c2": ["c2"], "c3": ["c3"], "bad": []}
+        rows = []
+        for case, names in surfaces.items():
+            status = "ok" if names else "failed"
+            rows.append({"case": case, "status": status})
+            os.makedirs(outputs.case_dir(outdir, case))
+            record = {"case": case, "status": status, "surfaces": [{"name": n, "mesh": f"{n}.vtk"} for n in names]}
+            outputs.write_json_atomically(outputs.record_path(outdir, case), record)
+            for name in names:
+                self.write(os.path.join("run", "cases", case, f"{name}.vtk"), "")
+        outputs.write_json_atomically(os.path.join(outdir, "summary.json"), {"cases": rows, "totals": {}})
+        meshes, left_out = manifest.read_training_meshes([outdir])
+        self.assertEqual([name for name, _ in meshes], ["c1", "c2", "c3"])
+        self.assertEqual(meshes[1][1], os.path.join(outputs.case_dir(outdir, "c2"), "c2.vtk"))
+        self.assertEqual(left_out, ["bad"])
+        record = outputs.read_json(outputs.record_path(outdir, "c3"))
+        record["surfaces"] = [{"name": f"c3.label-{k}", "mesh": f"c3.label-{k}.vtk"} for k in (1, 2)]
+        outputs.write_json_atomically(outputs.record_path(outdir, "c3"), record)
+        with self.assertRaisesRegex(manifest.ManifestError, r"c3 \(c3.label-1.vtk, c3.label-2.vtk\).*label-L.vtk"):
+            manifest.read_training_meshes([outdir])
+        with self.assertRaisesRegex(manifest.ManifestError, "not the OUTDIR of a meshextraction-cohort run"):
+            manifest.read_training_meshes([self.directory])
+
+
+def run_model(inputs, outdir, *options, timeout=240):
+    """Runs `meshextraction-cohort shape-model`; returns (exit status, output)."""
+    command = cohort_command("shape-model", *inputs, outdir, "--meshextraction", TOOL, *options)
+    result = subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+    return result.returncode, result.stdout + result.stderr
+
+
+def ply_points(path):
+    """The vertices of a PLY file of the module's writer (binary little endian, double or
+    float x y z first) or ASCII, as a list of (x, y, z)."""
+    with open(path, "rb") as stream:
+        header = []
+        while not header or header[-1] != "end_header":
+            header.append(stream.readline().decode().strip())
+        count = next(int(line.split()[2]) for line in header if line.startswith("element vertex"))
+        kinds = []
+        for line in header[header.index(next(h for h in header if h.startswith("element vertex"))) + 1 :]:
+            if not line.startswith("property"):
+                break
+            kinds.append(line.split()[1])
+        if "format ascii 1.0" in header:
+            return [tuple(float(v) for v in stream.readline().split()[:3]) for _ in range(count)]
+        codes = {"double": "d", "float": "f", "float64": "d", "float32": "f"}
+        layout = "<" + "".join(codes[k] for k in kinds)
+        size = struct.calcsize(layout)
+        return [struct.unpack(layout, stream.read(size))[:3] for _ in range(count)]
+
+
+def shape_population(work):
+    """The population of make_shape_population and, as a sixth mesh, an ellipsoid phantom
+    extracted by the tool (a VTK file: another reader)."""
+    meshes = synthetic.make_shape_population(os.path.join(work, "meshes"))
+    image, mesh = os.path.join(work, "ellipsoid.nrrd"), os.path.join(work, "meshes", "phantom.vtk")
+    subprocess.run([TOOL, "phantom", "ellipsoid", image, "--size", "26"], check=True, capture_output=True)
+    subprocess.run([TOOL, "extract", image, mesh, "--iso", "0", "--inside", "below"], check=True, capture_output=True)
+    return meshes + [mesh]
+
+
+def model_steps(outdir):
+    """{step: this_run} of the last build in OUTDIR."""
+    with open(os.path.join(outdir, "shape-model.json")) as stream:
+        return {row["step"]: row.get("this_run") for row in json.load(stream)["steps"]}
+
+
+def to_float(value):
+    """A double rounded to the nearest float (32 bits), as a cast in C++ rounds it."""
+    return struct.unpack("f", struct.pack("f", value))[0]
+
+
+def largest_relative_difference(a, b):
+    return max(abs(x - y) / max(abs(x), abs(y), 1e-300) for x, y in zip(a, b))
+
+
+class ShapeModelTest(unittest.TestCase):
+    """The shape model of six meshes on 2 and on 1 workers, and by the in-process `meshextraction
+    shape-model build`: the same model (the steps are the in-process build's, bit for bit)."""
+
+    def test_against_the_in_process_build(self):
+        work = fresh_dir("shape-model")
+        meshes = shape_population(work)
+        names = [os.path.splitext(os.path.basename(m))[0] for m in meshes]
+        outputs_of = {}
+        for workers in ("2", "1"):
+            outdir = os.path.join(work, f"out-{workers}")
+            status, output = run_model(meshes, outdir, "--workers", workers)
+            self.assertEqual(status, 0, output)
+            self.assertRegex(output, r"pass 1: matched 6/6 \S+ \(e2 [0-9.e+-]+ mm²; ")
+            self.assertIn("pivot: shape-1 (input 1, 866 points)", output)  # the first of two with the most
+            self.assertIn(f"corresponded meshes in {os.path.join(outdir, 'corresponded')}", output)
+            self.assertTrue(os.path.isfile(os.path.join(outdir, "model.h5")))
+            self.assertEqual(set(model_steps(outdir).values()), {"computed"})
+            outputs_of[workers] = outdir
+        one, two = (outputs.read_json(os.path.join(outputs_of[w], "model.json")) for w in ("1", "2"))
+        self.assertEqual(one, two)
+        for name in names:
+            digests = {outputs.sha256(os.path.join(outputs_of[w], "corresponded", f"{name}.ply")) for w in ("1", "2")}
+            self.assertEqual(len(digests), 1, name)
+        counts = {name: len(ply_points(os.path.join(outputs_of["2"], "corresponded", f"{name}.ply"))) for name in names}
+        self.assertEqual(set(counts.values()), {866}, counts)
+        self.assertFalse(glob.glob(os.path.join(work, "out-*", "**", ".*partial*"), recursive=True))
+        self.assertFalse(glob.glob(os.path.join(work, "out-*", "steps", "*", ".attempt-*")))
+
+        build_json, corresponded = os.path.join(work, "build.json"), os.path.join(work, "build-corresponded")
+        command = [TOOL, "shape-model", "build", *meshes, "--output", os.path.join(work, "build.h5")]
+        command += ["--corresponded", corresponded, "--json", build_json]
+        result = subprocess.run(command, capture_output=True, text=True)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        build = outputs.read_json(build_json)
+        for key in ("modes", "pivot", "passes"):
+            self.assertEqual(two[key], build[key], key)
+        difference = largest_relative_difference(two["all_variances"], build["all_variances"])
+        print(f"largest relative difference of the variances, Dask steps vs in-process build: {difference:.3g}")
+        # The build writes its corresponded meshes with float coordinates (for PLY inputs, as
+        # PLY), the steps with double ones: rounded to float, they must be the build's.
+        moved = 0.0
+        for name in names[:-1]:
+            ours = ply_points(os.path.join(outputs_of["2"], "corresponded", f"{name}.ply"))
+            theirs = ply_points(os.path.join(corresponded, f"{name}.ply"))
+            moved = max([moved] + [abs(to_float(a) - b) for p, q in zip(ours, theirs) for a, b in zip(p, q)])
+        print(f"largest coordinate difference of the corresponded meshes (as floats): {moved:.3g} mm")
+        self.assertLessEqual(difference, 1e-9, (two["all_variances"], build["all_variances"]))
+        self.assertLessEqual(largest_relative_difference(two["variances"], build["variances"]), 1e-9)
+        self.assertEqual(moved, 0.0)
+
+
+class ShapeModelResumeTest(unittest.TestCase):
+    """A state of the last pass and the model deleted: the rerun computes that match and the
+    reduction, keeps every other step, and gives the same model; a rerun of a complete build
+    computes nothing; a rerun with other inputs and options recomputes what depends on them."""
+
+    def test_resume(self):
+        work = fresh_dir("shape-model-resume")
+        meshes = synthetic.make_shape_population(os.path.join(work, "meshes"))
+        outdir = os.path.join(work, "out")
+        status, output = run_model(meshes, outdir, "--workers", "2")
+        self.assertEqual(status, 0, output)
+        model = outputs.read_json(os.path.join(outdir, "model.json"))
+        last = model["passes"]
+        os.unlink(os.path.join(outdir, f"pass-{last}", "shape-3.state.json"))
+        os.unlink(os.path.join(outdir, "model.h5"))
+        status, output = run_model(meshes, outdir, "--workers", "2")
+        self.assertEqual(status, 0, output)
+        computed = {step for step, this_run in model_steps(outdir).items() if this_run == "computed"}
+        self.assertIn(f"pass-{last}-match-shape-3", computed)
+        self.assertIn("finish", computed)
+        self.assertLessEqual(computed, {f"pass-{last}-match-shape-3", f"pass-{last}-renew", "finish"})
+        self.assertIn(f"pass {last}: 4 of 5 matches kept from an earlier build", output)
+        self.assertIn(f"pass {last}: matched 1/1 shape-3", output)
+        self.assertIn("prepare: 5 of 5 prepared meshes kept from an earlier build", output)
+        self.assertEqual(outputs.read_json(os.path.join(outdir, "model.json")), model)
+        self.assertTrue(os.path.isfile(os.path.join(outdir, "model.h5")))
+        print(f"the rerun computed {sorted(computed)}")
+
+        status, output = run_model(meshes, outdir, "--workers", "2")
+        self.assertEqual(status, 0, output)
+        self.assertEqual(set(model_steps(outdir).values()), {"kept"}, output)
+        build = outputs.read_json(os.path.join(outdir, "shape-model.json"))
+        self.assertEqual(build["cluster"], "no cluster (every step was kept)")
+        with open(os.path.join(outdir, "shape-model.log")) as stream:
+            log = stream.read()
+        self.assertEqual(log.count("shape-model match"), 5 * last + 1, "the log has each match command run")
+
+        # One mesh fewer, one pass: the pivot and so the first pass's matches stay; the
+        # renewal and the model are new; what only the earlier build had is gone.
+        status, output = run_model(meshes[:-1], outdir, "--workers", "2", "--passes", "1")
+        self.assertEqual(status, 0, output)
+        steps = model_steps(outdir)
+        self.assertEqual({s for s, this_run in steps.items() if this_run == "computed"}, {"pass-1-renew", "finish"})
+        self.assertEqual(len(steps), 4 + 4 + 2)
+        self.assertEqual(sorted(os.listdir(os.path.join(outdir, "steps"))), sorted(steps))
+        self.assertFalse(glob.glob(os.path.join(outdir, "pass-2")) + glob.glob(os.path.join(outdir, "*", "shape-4*")))
+        self.assertEqual(len(os.listdir(os.path.join(outdir, "corresponded"))), 4)
+        self.assertEqual(outputs.read_json(os.path.join(outdir, "model.json"))["passes"], 1)
+
+
+class ShapeModelBadInputTest(unittest.TestCase):
+    """An open mesh among the inputs: the build stops, naming it, with the tool's message;
+    fewer than two meshes: a usage error."""
+
+    def test_open_mesh(self):
+        work = fresh_dir("shape-model-bad")
+        meshes = synthetic.make_shape_population(os.path.join(work, "meshes"), cells=(6, 7, 6))
+        triangle = os.path.join(work, "meshes", "triangle.ply")
+        synthetic.write_ply(triangle, [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [(0, 1, 2)])
+        outdir = os.path.join(work, "out")
+        status, output = run_model(meshes[:2] + [triangle] + meshes[2:], outdir, "--workers", "2")
+        self.assertEqual(status, 1, output)
+        self.assertIn("the shape model cannot be built: 1 step(s) failed:", output)
+        self.assertRegex(output, rf"prepare triangle \({triangle}\): .*error")
+        self.assertEqual(output.count("prepare: prepared "), 3, output)  # the others (a rerun keeps them)
+        self.assertNotIn("pass 1", output)
+        self.assertFalse(os.path.exists(os.path.join(outdir, "model.h5")))
+        self.assertEqual(outputs.read_json(os.path.join(outdir, "shape-model.json"))["status"], "failed")
+
+        status, output = run_model(meshes[:1], os.path.join(work, "out-1"), "--workers", "1")
+        self.assertEqual(status, 2, output)
+        self.assertIn("a shape model needs at least two meshes; the input gives 1", output)
 
 
 def main():
