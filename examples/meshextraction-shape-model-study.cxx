@@ -22,7 +22,8 @@
 // leave-one-out generalisation, specificity, the fit of the corresponded meshes, and,
 // where each mesh has a landmark file (same name, .json), the subject-to-subject
 // landmark transfer error. Options: --thesis (no non-rigid stage: the thesis' closest
-// points), --p2p (point-to-point correspondence), --modes k (default 3), --write FILE
+// points), --p2p (point-to-point correspondence), --modes k (default 3), --passes N
+// (at most N template passes, default 2), --write FILE
 // (the model as statismo HDF5).
 
 #include "itkLandmarkFreeShapeModelEstimator.h"
@@ -54,6 +55,7 @@ struct Options
   bool         nonRigid{ true };
   bool         pointToPoint{ false };
   unsigned int modes{ 3 };
+  unsigned int passes{ 2 };
   std::string  modelFile;
 };
 
@@ -75,6 +77,10 @@ ParseOptions(int argc, char * argv[])
     else if (argument == "--modes" && i + 1 < argc)
     {
       options.modes = static_cast<unsigned int>(std::atoi(argv[++i]));
+    }
+    else if (argument == "--passes" && i + 1 < argc)
+    {
+      options.passes = static_cast<unsigned int>(std::max(1, std::atoi(argv[++i])));
     }
     else if (argument == "--write" && i + 1 < argc)
     {
@@ -249,6 +255,7 @@ main(int argc, char * argv[])
       estimator->AddInputMesh(mesh);
     }
     estimator->SetNonRigidCorrespondence(options.nonRigid);
+    estimator->SetMaximumNumberOfPasses(options.passes);
     if (options.pointToPoint)
     {
       estimator->SetCorrespondence(itk::MeshExtractionEnums::Correspondence::PointToPoint);

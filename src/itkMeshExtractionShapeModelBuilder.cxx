@@ -16,12 +16,17 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionShapeModelBuilder.h"
+#include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionValidityGuard.h"
+#include "itkMultiThreaderBase.h"
 
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <memory>
 #include <numeric>
 #include <sstream>
+#include <thread>
 
 namespace itk
 {
@@ -374,21 +379,66 @@ private:
   MatchAll(unsigned int pass, ShapeModelBuildResult & result)
   {
     const ClosestPointQuery onTemplate(m_Template, m_Settings.correspondence);
-    m_Matches.resize(m_Meshes.size());
-    result.corresponded.assign(m_Meshes.size(), Shape());
-    result.e2.assign(m_Meshes.size(), 0.0);
-    for (std::size_t i = 0; i < m_Meshes.size(); ++i)
+    const std::size_t       m = m_Meshes.size();
+    m_Matches.resize(m);
+    std::vector<std::exception_ptr> errors(m);
+    std::atomic<std::size_t>        next{ 0 };
+    std::atomic<std::size_t>        done{ 0 };
+    // The meshes are matched side by side, each on one thread: the parallel loops inside
+    // a match are short and leave cores idle, the matches are independent of each other,
+    // and a match gives the same result on any number of threads. Only the calling
+    // thread reports progress (observers need not be thread-safe).
+    const auto work = [&](bool reports) {
+      const ScopedNumberOfWorkUnits one(1);
+      for (std::size_t i = next++; i < m; i = next++)
+      {
+        try
+        {
+          const SimilarityParameters previous = m_Matches[i].templateToMesh;
+          m_Matches[i] = MatchOne(onTemplate,
+                                  m_Template.points,
+                                  *m_Training[i],
+                                  m_NonRigid.get(),
+                                  m_Settings,
+                                  pass > 0 ? &previous : nullptr,
+                                  {});
+        }
+        catch (...)
+        {
+          errors[i] = std::current_exception();
+        }
+        ++done;
+        if (reports)
+        {
+          this->Report(static_cast<double>(pass * m + done) /
+                       static_cast<double>(m_Settings.maximumNumberOfPasses * m));
+        }
+      }
+    };
+    const unsigned int given = ThreadNumberOfWorkUnits();
+    const std::size_t  threads = std::min<std::size_t>(
+      m, std::max(1u, given > 0 ? given : MultiThreaderBase::GetGlobalDefaultNumberOfThreads()));
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < threads; ++t)
     {
-      const double step = 1.0 / static_cast<double>(m_Settings.maximumNumberOfPasses * m_Meshes.size());
-      const double start = (pass * m_Meshes.size() + i) * step;
-      const SimilarityParameters previous = m_Matches[i].templateToMesh;
-      m_Matches[i] = MatchOne(onTemplate,
-                              m_Template.points,
-                              *m_Training[i],
-                              m_NonRigid.get(),
-                              m_Settings,
-                              pass > 0 ? &previous : nullptr,
-                              [&](double f) { this->Report(start + f * step); });
+      helpers.emplace_back(work, false);
+    }
+    work(true);
+    for (std::thread & helper : helpers)
+    {
+      helper.join();
+    }
+    for (const std::exception_ptr & error : errors)
+    {
+      if (error)
+      {
+        std::rethrow_exception(error);
+      }
+    }
+    result.corresponded.assign(m, Shape());
+    result.e2.assign(m, 0.0);
+    for (std::size_t i = 0; i < m; ++i)
+    {
       result.e2[i] = m_Matches[i].e2;
       result.corresponded[i] = m_Matches[i].corresponded;
     }
