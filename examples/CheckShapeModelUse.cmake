@@ -1,4 +1,4 @@
-# meshextraction shape-model build, sample and project on four ellipsoid phantoms (the
+# meshextraction shape-model build, evaluate, sample and project on four ellipsoid phantoms (the
 # ellipsoid phantom on grids of different spacings): the model's samples are closed,
 # valid surfaces; a training mesh projects with a small residual; bad coefficients are
 # refused; --report writes its page and renderings. Arguments: -DMESHEXTRACTION=path -DWORK=dir.
@@ -29,6 +29,11 @@ foreach(file index.html compactness.svg mean.png mode1-minus2.png mode1-plus2.pn
     message(FATAL_ERROR "build --report wrote no ${file}")
   endif()
 endforeach()
+run(0 "leave-one-out generalisation, 2 modes" shape-model evaluate ${meshes} --modes 2)
+string(FIND "${output}" "landmark transfer: not measured" found)
+if(found EQUAL -1)
+  message(FATAL_ERROR "evaluate without landmark files should say transfer is not measured:\n${output}")
+endif()
 run(0 "(the mean)" shape-model sample ${WORK}/model.h5 --output ${WORK}/mean.vtk)
 run(0 "valid closed surface: yes" quality ${WORK}/mean.vtk)
 run(0 "at (standard deviations): 2 -1" shape-model sample ${WORK}/model.h5 --output ${WORK}/s.vtk --coefficients=2,-1)

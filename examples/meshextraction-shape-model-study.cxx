@@ -16,271 +16,57 @@
  *
  *=========================================================================*/
 
-// meshextraction-shape-model-study: the landmark-free shape model (thesis chapter 7) of
-// the meshes of one directory (every *.ply but ref_*, e.g. ../shared/data/vertebrae_L1)
-// and the figures the field judges it by: the variance in the first modes (compactness),
-// leave-one-out generalisation, specificity, the fit of the corresponded meshes, and,
-// where each mesh has a landmark file (same name, .json), the subject-to-subject
-// landmark transfer error. Options: --thesis (no non-rigid stage: the thesis' closest
-// points), --p2p (point-to-point correspondence), --modes k (default 3), --passes N
-// (at most N template passes, default 2), --write FILE
-// (the model as statismo HDF5).
+// meshextraction-shape-model-study: `meshextraction shape-model evaluate` under the name
+// and options earlier notes and doc/history.md quote: the model of the meshes of one
+// folder (default ../shared/data/vertebrae_L1: every *.ply but ref_*) and its figures.
+// Options: --thesis (no non-rigid stage: the thesis' closest points), --p2p
+// (point-to-point correspondence), --modes k (default 3), --passes N (at most N template
+// passes, default 2), --write FILE (the model as statismo HDF5).
 
-#include "itkLandmarkFreeShapeModelEstimator.h"
-#include "itkMeshExtractionLandmarkFile.h"
-#include "itkMeshExtractionPLY.h"
-#include "itkMeshExtractionSelfIntersections.h"
-#include "itkMeshExtractionShapeModelBuilder.h"
-#include "itkMeshExtractionShapeModelEvaluation.h"
-#include "itkQuadEdgeMesh.h"
+#include "MeshExtractionCLI.h"
 
-#include <algorithm>
-#include <chrono>
 #include <cstdlib>
-#include <filesystem>
-#include <iomanip>
+#include <exception>
 #include <iostream>
 #include <string>
-#include <vector>
-
-namespace
-{
-using MeshType = itk::QuadEdgeMesh<double, 3>;
-using Estimator = itk::LandmarkFreeShapeModelEstimator<MeshType>;
-namespace detail = itk::MeshExtraction::detail;
-
-struct Options
-{
-  std::string  directory{ "../shared/data/vertebrae_L1" };
-  bool         nonRigid{ true };
-  bool         pointToPoint{ false };
-  unsigned int modes{ 3 };
-  unsigned int passes{ 2 };
-  std::string  modelFile;
-};
-
-Options
-ParseOptions(int argc, char * argv[])
-{
-  Options options;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string argument = argv[i];
-    if (argument == "--thesis")
-    {
-      options.nonRigid = false;
-    }
-    else if (argument == "--p2p")
-    {
-      options.pointToPoint = true;
-    }
-    else if (argument == "--modes" && i + 1 < argc)
-    {
-      options.modes = static_cast<unsigned int>(std::atoi(argv[++i]));
-    }
-    else if (argument == "--passes" && i + 1 < argc)
-    {
-      options.passes = static_cast<unsigned int>(std::max(1, std::atoi(argv[++i])));
-    }
-    else if (argument == "--write" && i + 1 < argc)
-    {
-      options.modelFile = argv[++i];
-    }
-    else
-    {
-      options.directory = argument;
-    }
-  }
-  return options;
-}
-
-/** The training set: meshes, prepared originals and landmarks (empty without a file). */
-struct TrainingSet
-{
-  std::vector<std::string>                              names;
-  std::vector<MeshType::Pointer>                        meshes;
-  std::vector<itk::MeshExtraction::IndexedTriangleMesh> originals;
-  std::vector<detail::MeshLandmarks>                    landmarks;
-  bool                                                  allLandmarks{ true };
-};
-
-TrainingSet
-ReadTrainingSet(const std::string & directory)
-{
-  std::vector<std::filesystem::path> files;
-  for (const auto & entry : std::filesystem::directory_iterator(directory))
-  {
-    const auto name = entry.path().filename().string();
-    if (entry.path().extension() == ".ply" && name.rfind("ref_", 0) != 0)
-    {
-      files.push_back(entry.path());
-    }
-  }
-  std::sort(files.begin(), files.end());
-  TrainingSet set;
-  for (const auto & file : files)
-  {
-    const auto indexed = itk::MeshExtraction::ReadPLYFile(file.string());
-    set.names.push_back(file.stem().string());
-    set.originals.push_back(detail::PrepareTrainingMesh(indexed, file.string()));
-    set.meshes.push_back(MeshType::New());
-    itk::MeshExtraction::FillMesh(indexed, *set.meshes.back());
-    detail::MeshLandmarks landmarks;
-    auto                  json = file;
-    json.replace_extension(".json");
-    if (std::filesystem::exists(json))
-    {
-      for (const auto & landmark : itk::MeshExtraction::ReadLandmarkFile(json.string()))
-      {
-        landmarks.ids.push_back(landmark.id);
-        landmarks.points.push_back(
-          itk::MeshExtraction::MakeVec3(landmark.point[0], landmark.point[1], landmark.point[2]));
-      }
-    }
-    set.allLandmarks = set.allLandmarks && !landmarks.ids.empty();
-    set.landmarks.push_back(landmarks);
-  }
-  return set;
-}
-
-void
-PrintCompactness(const Estimator & estimator, const detail::PrincipalComponentModel & all)
-{
-  const auto cumulative = detail::CumulativeVarianceFractions(all.variances);
-  std::cout << "compactness (cumulative variance, % per number of modes):";
-  for (std::size_t k = 0; k < cumulative.size(); ++k)
-  {
-    std::cout << ' ' << k + 1 << ':' << std::fixed << std::setprecision(1) << 100.0 * cumulative[k];
-  }
-  std::cout << std::setprecision(3);
-  std::cout << "\nmodes kept (variance fraction " << estimator.GetVarianceFraction()
-            << "): " << estimator.GetNumberOfModes() << '\n';
-}
-
-void
-PrintPasses(const Estimator & estimator)
-{
-  std::cout << std::fixed << std::setprecision(3)
-            << "per template pass: mean E^2 of eq. 7.3 (mm^2) / template move (mm):";
-  for (std::size_t p = 0; p < estimator.GetNumberOfPasses(); ++p)
-  {
-    std::cout << ' ' << estimator.GetMeanSquaredDistancePerPass()[p] << " / "
-              << estimator.GetTemplateChangePerPass()[p];
-  }
-  std::cout << '\n';
-}
-
-/** Thesis Table 7.2: the angles of the first modes of subsets to those of all meshes. */
-void
-PrintStability(const std::vector<detail::Shape> & aligned, unsigned int modes)
-{
-  std::vector<std::size_t> sizes;
-  for (std::size_t s = std::min<std::size_t>(aligned.size(), 4); s < aligned.size(); ++s)
-  {
-    sizes.push_back(s);
-  }
-  const auto angles = detail::EigenvectorStability(aligned, sizes, modes);
-  std::cout << "eigenvector stability (angle to the mode of all meshes, rad), per subset size:";
-  for (std::size_t s = 0; s < sizes.size(); ++s)
-  {
-    std::cout << "\n  " << sizes[s] << ':';
-    for (double angle : angles[s])
-    {
-      std::cout << ' ' << angle;
-    }
-  }
-  std::cout << '\n';
-}
-
-void
-PrintEvaluation(const TrainingSet & set, const Estimator & estimator, unsigned int modes)
-{
-  std::vector<detail::Shape> corresponded;
-  for (unsigned int i = 0; i < set.meshes.size(); ++i)
-  {
-    corresponded.push_back(itk::MeshExtraction::MakeIndexedTriangleMesh(*estimator.GetCorrespondedMesh(i)).points);
-  }
-  const auto triangles = itk::MeshExtraction::MakeIndexedTriangleMesh(*estimator.GetMeanMesh()).triangles;
-  std::vector<detail::SimilarityParameters> toModel;
-  const auto                                aligned = detail::GeneralizedProcrustes(corresponded, true, &toModel);
-  PrintCompactness(estimator, detail::BuildPrincipalComponents(aligned, 1.0));
-  std::cout << std::setprecision(3);
-  PrintStability(aligned, modes);
-  const auto loo = detail::LeaveOneOutGeneralization(corresponded, set.originals, modes);
-  std::cout << "leave-one-out generalisation, " << modes << " modes (mm): vertex-to-vertex " << loo.meanVertexToVertex
-            << ", vertex-to-surface " << loo.meanVertexToSurface << '\n';
-  detail::SpecificitySettings settings;
-  settings.modes = modes;
-  const auto specificity = detail::Specificity(aligned, toModel, set.originals, settings);
-  std::cout << "specificity, " << modes << " modes (mm): vertex-to-vertex " << specificity.vertexToVertex << " (sd "
-            << specificity.vertexToVertexDeviation << "), vertex-to-surface " << specificity.vertexToSurface << '\n';
-  const auto fit = detail::MeasureSurfaceFit(corresponded, triangles, set.originals);
-  std::cout << "fit (mm): corresponded to original " << fit.forward << ", original to corresponded " << fit.backward
-            << '\n';
-  std::cout << "self-intersecting triangle pairs of the corresponded meshes:";
-  for (const auto & shape : corresponded)
-  {
-    itk::MeshExtraction::IndexedTriangleMesh mesh;
-    mesh.points = shape;
-    mesh.triangles = triangles;
-    std::cout << ' ' << detail::FindSelfIntersections(mesh).size();
-  }
-  std::cout << '\n';
-  if (!set.allLandmarks)
-  {
-    std::cout << "landmark transfer: not measured (a mesh has no landmark file)\n";
-    return;
-  }
-  const auto transfer = detail::TransferLandmarks(corresponded, triangles, set.landmarks);
-  std::cout << "landmark transfer, " << transfer.count << " landmarks over the ordered pairs (mm): mean "
-            << transfer.mean << ", median " << transfer.median << "\n  per landmark:";
-  for (std::size_t l = 0; l < transfer.ids.size(); ++l)
-  {
-    std::cout << ' ' << transfer.ids[l] << ':' << transfer.meanPerLandmark[l];
-  }
-  std::cout << '\n';
-}
-} // namespace
 
 int
 main(int argc, char * argv[])
 {
-  const Options options = ParseOptions(argc, argv);
+  MeshExtractionCLI::Arguments args;
+  std::string                  folder = "../shared/data/vertebrae_L1";
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string argument = argv[i];
+    const bool        valued = i + 1 < argc;
+    if (argument == "--thesis")
+    {
+      args.Set("thesis", "");
+    }
+    else if (argument == "--p2p")
+    {
+      args.Set("correspondence", "point");
+    }
+    else if ((argument == "--modes" || argument == "--passes") && valued)
+    {
+      args.Set(argument.substr(2), argv[++i]);
+    }
+    else if (argument == "--write" && valued)
+    {
+      args.Set("output", argv[++i]);
+    }
+    else
+    {
+      folder = argument;
+    }
+  }
   try
   {
-    const TrainingSet set = ReadTrainingSet(options.directory);
-    auto              estimator = Estimator::New();
-    for (const auto & mesh : set.meshes)
-    {
-      estimator->AddInputMesh(mesh);
-    }
-    estimator->SetNonRigidCorrespondence(options.nonRigid);
-    estimator->SetMaximumNumberOfPasses(options.passes);
-    if (options.pointToPoint)
-    {
-      estimator->SetCorrespondence(itk::MeshExtractionEnums::Correspondence::PointToPoint);
-    }
-    std::cout << set.meshes.size() << " meshes from " << options.directory << "; "
-              << (options.nonRigid ? "non-rigid stage" : "thesis (closest points)") << ", "
-              << (options.pointToPoint ? "point-to-point" : "point-to-surface") << '\n';
-    const auto start = std::chrono::steady_clock::now();
-    estimator->Update();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "model built in " << std::setprecision(3) << seconds << " s: pivot "
-              << set.names[estimator->GetPivotIndex()] << ", " << estimator->GetNumberOfPasses()
-              << " template passes\n";
-    PrintPasses(*estimator);
-    PrintEvaluation(set, *estimator, options.modes);
-    if (!options.modelFile.empty())
-    {
-      estimator->WriteModel(options.modelFile);
-      std::cout << "model written to " << options.modelFile << '\n';
-    }
+    return MeshExtractionCLI::EvaluateShapeModel(args, { folder });
   }
   catch (const std::exception & e)
   {
     std::cerr << "meshextraction-shape-model-study: " << e.what() << '\n';
     return EXIT_FAILURE;
   }
-  return EXIT_SUCCESS;
 }

@@ -694,6 +694,12 @@ RunProject(const Arguments & args)
   return 0;
 }
 
+int
+RunEvaluate(const Arguments & args)
+{
+  return EvaluateShapeModel(args, { args.positional.begin() + 1, args.positional.end() });
+}
+
 /** The verbs of shape-model and how many positional arguments each takes (its own
  * included); `build` is also the default, for the form without a verb. */
 struct Verb
@@ -713,7 +719,7 @@ Verbs()
     { "build", 3, 100000, false, true, RunShapeModel }, { "prepare", 2, 2, false, true, RunPrepare },
     { "match", 3, 3, true, true, RunMatch },            { "renew", 3, 100000, true, true, RunRenew },
     { "finish", 4, 100000, false, true, RunFinish },    { "sample", 2, 2, false, true, RunSample },
-    { "project", 3, 3, false, false, RunProject },
+    { "project", 3, 3, false, false, RunProject },      { "evaluate", 2, 100000, false, false, RunEvaluate },
   };
   return verbs;
 }
@@ -762,7 +768,8 @@ MakeShapeModelCommand()
             "       meshextraction shape-model renew TEMPLATE STATE.json... --output TEMPLATE.ply --json RENEWAL.json\n"
             "       meshextraction shape-model finish TEMPLATE STATE.json... --output MODEL.h5 [--pivot I --passes P]\n"
             "       meshextraction shape-model sample MODEL.h5 --output MESH [--coefficients S,S,... | --random-seed N]\n"
-            "       meshextraction shape-model project MODEL.h5 MESH [--json B.json] [--output CORRESPONDED.ply]";
+            "       meshextraction shape-model project MODEL.h5 MESH [--json B.json] [--output CORRESPONDED.ply]\n"
+            "       meshextraction shape-model evaluate MESH MESH [MESH...] | FOLDER [--modes K] [--output MODEL.h5]";
   c.description =
     "build: the shape model of the meshes (PLY, or any format ITK reads) with\n"
     "LandmarkFreeShapeModelEstimator: the symmetric similarity ICP of every mesh to a template (the\n"
@@ -779,7 +786,12 @@ MakeShapeModelCommand()
     "sample writes the model's shape at the given coefficients (standard deviations of each mode;\n"
     "none: the mean), or at coefficients drawn from a standard normal within +-2. project matches\n"
     "the model's mean to a new mesh as build does, and prints its coefficients and the residual\n"
-    "the modes leave (RMS, mm).";
+    "the modes leave (RMS, mm).\n\n"
+    "evaluate builds the model of the meshes (or of a folder's *.ply but ref_*) and prints the\n"
+    "figures of thesis section 7.3 and beyond: compactness, eigenvector stability against subset\n"
+    "size, leave-one-out generalisation and specificity with K modes, the fit of the corresponded\n"
+    "meshes, their self-intersections, and, where every mesh has a landmark file of its name\n"
+    "(.json), the landmark transfer error over all ordered pairs.";
   c.options = {
     { "output", "FILE", "the model (statismo HDF5); of a step, its mesh", "" },
     { "json", "FILE", "build, finish: the model's summary; prepare, match, renew: the step's state", "" },
@@ -794,6 +806,7 @@ MakeShapeModelCommand()
     { "pivot", "I", "finish: the pivot's index, for the model's description", "0" },
     { "coefficients", "S,S,...", "sample: standard deviations of the first modes (--coefficients=-2,1)", "" },
     { "random-seed", "N", "sample: coefficients drawn from a standard normal, within +-2", "" },
+    { "modes", "K", "evaluate: the modes of the generalisation, specificity and stability", "3" },
   };
   c.minimumPositional = 2;
   c.run = RunVerb;
