@@ -292,7 +292,7 @@ MatchOne(const ClosestPointQuery &           onTemplate,
   {
     progress(icpShare);
   }
-  TemplateMatch                 out;
+  TemplateMatch out;
   out.e2 = match.e2;
   out.templateToMesh = ToSimilarityParameters(*match.fixedToMoving);
   const std::vector<Vec3> moved = TransformPoints(templatePoints, *match.fixedToMoving);
@@ -373,8 +373,8 @@ public:
   }
 
 private:
-  /** Every mesh matched to the template and corresponded (its matrix of the previous
-   * pass, moved with the template, the initial estimate). */
+  /** Every mesh matched to the template and corresponded (from the second pass on, its
+   * similarity of the previous pass, moved with the template, is the initial estimate). */
   void
   MatchAll(unsigned int pass, ShapeModelBuildResult & result)
   {

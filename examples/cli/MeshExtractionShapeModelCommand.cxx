@@ -109,8 +109,8 @@ struct ModelSummary
 ModelSummary
 Summarize(const ME::detail::ShapeModelBuildResult & result)
 {
-  return { result.model.variances,         result.allVariances,           result.model.totalVariance,
-           result.pivot,                   result.templateChanges.size(), result.corresponded.size() };
+  return { result.model.variances, result.allVariances,           result.model.totalVariance,
+           result.pivot,            result.templateChanges.size(), result.corresponded.size() };
 }
 
 void
@@ -495,9 +495,9 @@ RunMatch(const Arguments & args)
   {
     throw UsageError("--initial and --gauge go together (the previous pass's state and renewal)");
   }
-  const ME::IndexedTriangleMesh  templateMesh = ReadPrepared(args.positional[1]);
-  const ME::IndexedTriangleMesh  mesh = ReadPrepared(args.positional[2]);
-  const auto                     settings = SettingsOf(args);
+  const ME::IndexedTriangleMesh    templateMesh = ReadPrepared(args.positional[1]);
+  const ME::IndexedTriangleMesh    mesh = ReadPrepared(args.positional[2]);
+  const auto                       settings = SettingsOf(args);
   ME::detail::SimilarityParameters initial;
   if (args.Has("initial"))
   {
