@@ -35,6 +35,7 @@ namespace MeshExtraction
 namespace detail
 {
 struct ShapeModelBuildResult;
+struct ShapeModelSettings;
 } // namespace detail
 } // namespace MeshExtraction
 
@@ -149,6 +150,12 @@ public:
    * GetCorrespondedMesh) after its similarity alignment to the mean. */
   CoefficientsType
   Project(const MeshType * mesh) const;
+  /** A closed mesh of any topology (a new subject) on the model's topology: the model's
+   * mean matched to it as the build matches its meshes (similarity ICP and the
+   * correspondence), in the mesh's frame. Project() of the result gives its
+   * coefficients. Throws for an empty, open, non-manifold or non-finite mesh. */
+  MeshPointer
+  MatchToModel(const MeshType * mesh) const;
   /** Training mesh i on the model's topology, in its own frame. */
   MeshPointer
   GetCorrespondedMesh(unsigned int i) const;
@@ -166,6 +173,9 @@ protected:
 private:
   MeshPointer
   MakeModelMesh(const std::vector<double> & coordinates) const;
+  /** The builder's settings from this object's. */
+  MeshExtraction::detail::ShapeModelSettings
+  MakeSettings() const;
   const MeshExtraction::detail::ShapeModelBuildResult &
   Result() const;
 

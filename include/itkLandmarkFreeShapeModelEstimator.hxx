@@ -56,15 +56,23 @@ LandmarkFreeShapeModelEstimator<TMesh>::Update()
     }
     meshes.push_back(PrepareTrainingMesh(MeshExtraction::MakeIndexedTriangleMesh(*m_InputMeshes[i]), name));
   }
-  ShapeModelSettings settings;
+  const auto report = [this](double fraction) {
+    m_Progress = static_cast<float>(fraction);
+    this->InvokeEvent(ProgressEvent());
+  };
+  m_Result = std::make_shared<const ShapeModelBuildResult>(BuildShapeModel(meshes, this->MakeSettings(), report));
+}
+
+template <typename TMesh>
+MeshExtraction::detail::ShapeModelSettings
+LandmarkFreeShapeModelEstimator<TMesh>::MakeSettings() const
+{
+  MeshExtraction::detail::ShapeModelSettings settings;
   settings.correspondence = m_Correspondence;
   settings.nonRigid = m_NonRigidCorrespondence;
   settings.varianceFraction = m_VarianceFraction;
   settings.maximumNumberOfPasses = m_MaximumNumberOfPasses;
-  m_Result = std::make_shared<const ShapeModelBuildResult>(BuildShapeModel(meshes, settings, [this](double fraction) {
-    m_Progress = static_cast<float>(fraction);
-    this->InvokeEvent(ProgressEvent());
-  }));
+  return settings;
 }
 
 template <typename TMesh>
@@ -168,6 +176,29 @@ LandmarkFreeShapeModelEstimator<TMesh>::Project(const MeshType * mesh) const -> 
   }
   return MeshExtraction::detail::ProjectInStandardDeviations(this->Result(),
                                                              MeshExtraction::MakeIndexedTriangleMesh(*mesh).points);
+}
+
+template <typename TMesh>
+auto
+LandmarkFreeShapeModelEstimator<TMesh>::MatchToModel(const MeshType * mesh) const -> MeshPointer
+{
+  using namespace MeshExtraction::detail;
+  if (mesh == nullptr)
+  {
+    itkExceptionMacro("No mesh to match.");
+  }
+  const auto &                              result = this->Result();
+  const MeshExtraction::IndexedTriangleMesh prepared =
+    PrepareTrainingMesh(MeshExtraction::MakeIndexedTriangleMesh(*mesh), "the mesh to match");
+  const TemplateMatch match =
+    MatchTemplate(ModelMesh(result, result.model.mean), prepared, this->MakeSettings(), nullptr);
+  std::vector<double> coordinates;
+  coordinates.reserve(3 * match.corresponded.size());
+  for (const auto & p : match.corresponded)
+  {
+    coordinates.insert(coordinates.end(), { p[0], p[1], p[2] });
+  }
+  return this->MakeModelMesh(coordinates);
 }
 
 template <typename TMesh>

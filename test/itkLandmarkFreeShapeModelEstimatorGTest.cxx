@@ -227,6 +227,16 @@ TEST(LandmarkFreeShapeModelEstimator, EllipsoidsOfOneVaryingAxisGiveOneMode)
   const auto first = estimator->Project(estimator->GetCorrespondedMesh(0));
   const auto last = estimator->Project(estimator->GetCorrespondedMesh(7));
   EXPECT_GT(std::abs(first[0] - last[0]), 2.0);
+
+  // A new subject, the long axis of the last one in another pose and resolution: matched
+  // to the model, it projects near the last training mesh on mode 1.
+  std::mt19937_64         random(101);
+  const MeshType::Pointer subject = ToMesh(PosedEllipsoid(LongAxis(7, 8), middleAxis, 3, random));
+  const auto              matched = estimator->MatchToModel(subject);
+  EXPECT_EQ(matched->GetNumberOfPoints(), estimator->GetMeanMesh()->GetNumberOfPoints());
+  const auto b = estimator->Project(matched);
+  EXPECT_NEAR(b[0], last[0], 0.1 * std::abs(first[0] - last[0]));
+  EXPECT_THROW(estimator->MatchToModel(nullptr), itk::ExceptionObject);
 }
 
 // The steps a distributed build runs (prepare, match per mesh and pass, renew, finish),
