@@ -299,6 +299,12 @@ TEST(LandmarkFreeShapeModelEstimator, StepsThroughFilesGiveTheModelOfOneBuild)
     EXPECT_TRUE(steps.corresponded[i] == one.corresponded[i]) << "corresponded mesh " << i;
   }
   EXPECT_GT(one.allVariances.front(), 0.0);
+
+  // A renewal without matches, or with a match of another template, is refused.
+  EXPECT_THROW(detail::RenewTemplate(templateMesh, {}, settings), itk::ExceptionObject);
+  std::vector<detail::TemplateMatch> foreign(1);
+  foreign[0].corresponded.assign(templateMesh.points.size() + 1, itk::MeshExtraction::MakeVec3(0, 0, 0));
+  EXPECT_THROW(detail::RenewTemplate(templateMesh, foreign, settings), itk::ExceptionObject);
 }
 
 TEST(LandmarkFreeShapeModelEstimator, TwoIndependentAxesGiveTwoModes)
