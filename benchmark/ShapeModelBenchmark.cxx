@@ -43,6 +43,25 @@ VertebraPath(const char * name)
   return std::string(MESHEXTRACTION_SOURCE_DIR) + "/../shared/data/vertebrae_L1/sub-verse" + name + "_segment_20.ply";
 }
 
+/** True, after marking the benchmark skipped, where ../shared/data is not next to the project. */
+bool
+SkippedWithoutVertebrae(benchmark::State & state)
+{
+  if (std::ifstream(VertebraPath("010")))
+  {
+    return false;
+  }
+  state.SkipWithError("../shared/data/vertebrae_L1 is not next to the project");
+  return true;
+}
+
+/** L1 vertebra sub-verse<name>, made ready as the shape model takes it. */
+ME::IndexedTriangleMesh
+Vertebra(const char * name)
+{
+  return ME::detail::PrepareTrainingMesh(ME::ReadPLYFile(VertebraPath(name)), VertebraPath(name));
+}
+
 /** An ellipsoid of semi-axes a, 20, 15 mm: a geodesic sphere of the given subdivisions,
  * turned by `angle` about z and moved by `shift`. */
 ME::IndexedTriangleMesh
@@ -90,18 +109,14 @@ SymmetricICPEllipsoids(benchmark::State & state)
 }
 BENCHMARK(SymmetricICPEllipsoids)->Unit(benchmark::kMillisecond);
 
-/** The two largest L1 vertebrae (24,112 and 20,000-odd vertices), unaligned, as scanned. */
+/** L1 vertebrae sub-verse010 and sub-verse041 (19,264 and 13,520 vertices), as scanned. */
 void
 SymmetricICPVertebrae(benchmark::State & state)
 {
-  if (!std::ifstream(VertebraPath("010")))
+  if (!SkippedWithoutVertebrae(state))
   {
-    state.SkipWithError("../shared/data/vertebrae_L1 is not next to the project");
-    return;
+    RunICP(state, Vertebra("010"), Vertebra("041"));
   }
-  RunICP(state,
-         ME::detail::PrepareTrainingMesh(ME::ReadPLYFile(VertebraPath("010")), "a"),
-         ME::detail::PrepareTrainingMesh(ME::ReadPLYFile(VertebraPath("041")), "b"));
 }
 BENCHMARK(SymmetricICPVertebrae)->Unit(benchmark::kMillisecond);
 
@@ -109,16 +124,15 @@ BENCHMARK(SymmetricICPVertebrae)->Unit(benchmark::kMillisecond);
 void
 ShapeModelVertebrae(benchmark::State & state)
 {
-  if (!std::ifstream(VertebraPath("010")))
+  if (SkippedWithoutVertebrae(state))
   {
-    state.SkipWithError("../shared/data/vertebrae_L1 is not next to the project");
     return;
   }
   std::vector<ME::IndexedTriangleMesh> meshes;
   std::size_t                          vertices = 0;
   for (const char * name : { "010", "013", "016", "018", "022", "023", "024", "026", "030", "041" })
   {
-    meshes.push_back(ME::detail::PrepareTrainingMesh(ME::ReadPLYFile(VertebraPath(name)), name));
+    meshes.push_back(Vertebra(name));
     vertices += meshes.back().points.size();
   }
   std::size_t modes = 0;

@@ -23,7 +23,7 @@
 // (point-to-point correspondence), --modes k (default 3), --passes N (at most N template
 // passes, default 2), --write FILE (the model as statismo HDF5).
 
-#include "MeshExtractionCLI.h"
+#include "MeshExtractionShapeModelCLI.h"
 
 #include <cstdlib>
 #include <exception>

@@ -122,6 +122,10 @@ MatchTemplate(const IndexedTriangleMesh &         templateMesh,
               const SimilarityParameters *        initial,
               const std::function<void(double)> & progress = {});
 
+/** Throws unless `match` has a point for each of the template's (it was matched to it). */
+MeshExtraction_EXPORT void
+CheckMatchOfTemplate(const IndexedTriangleMesh & templateMesh, const TemplateMatch & match);
+
 /** The end of a pass: the mean of the matches taken back to the template's frame,
  * similarity-aligned to the template (`gauge`: mean to new template), with the old points
  * kept where the mean would cross or fold (non-rigid builds); `change` is the RMS move

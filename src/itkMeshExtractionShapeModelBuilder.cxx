@@ -494,6 +494,17 @@ MatchTemplate(const IndexedTriangleMesh &         templateMesh,
   return MatchOne(onTemplate, templateMesh.points, training, nonRigid.get(), settings, initial, progress);
 }
 
+void
+CheckMatchOfTemplate(const IndexedTriangleMesh & templateMesh, const TemplateMatch & match)
+{
+  if (match.corresponded.size() != templateMesh.points.size())
+  {
+    itkGenericExceptionMacro("A corresponded mesh has " << match.corresponded.size() << " points, the template "
+                                                        << templateMesh.points.size()
+                                                        << ": it was not matched to this template.");
+  }
+}
+
 RenewedTemplate
 RenewTemplate(const IndexedTriangleMesh &        templateMesh,
               const std::vector<TemplateMatch> & matches,
@@ -506,12 +517,7 @@ RenewTemplate(const IndexedTriangleMesh &        templateMesh,
   std::vector<Shape> inTemplateFrame;
   for (const TemplateMatch & match : matches)
   {
-    if (match.corresponded.size() != templateMesh.points.size())
-    {
-      itkGenericExceptionMacro("A corresponded mesh has " << match.corresponded.size()
-                                                          << " points, the template " << templateMesh.points.size()
-                                                          << ": it was not matched to this template.");
-    }
+    CheckMatchOfTemplate(templateMesh, match);
     inTemplateFrame.push_back(ApplySimilarity(match.templateToMesh.Inverse(), match.corresponded));
   }
   const Shape     mean = Mean(inTemplateFrame);

@@ -434,14 +434,6 @@ MakeReportCommand();
 Command
 MakeShapeModelCommand();
 
-/** meshextraction shape-model evaluate (MeshExtractionShapeModelEvaluation.cxx): the
- * model of `inputs` (mesh files, or one folder: its *.ply but ref_*) and its figures
- * (compactness, eigenvector stability, leave-one-out generalisation, specificity, fit,
- * landmark transfer where every mesh has a landmark file of its name). Options as
- * shape-model build's, and --modes (default 3) for the figures. */
-int
-EvaluateShapeModel(const Arguments & args, const std::vector<std::string> & inputs);
-
 } // namespace MeshExtractionCLI
 
 #endif

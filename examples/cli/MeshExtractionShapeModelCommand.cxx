@@ -20,13 +20,12 @@
 // 7) of closed meshes, written as a statismo HDF5 file, with every input's corresponded
 // mesh on the model's topology.
 
-#include "MeshExtractionCLI.h"
+#include "MeshExtractionShapeModelCLI.h"
 
-#include "itkLandmarkFreeShapeModelEstimator.h"
 #include "itkMeshExtractionJSON.h"
 #include "itkMeshExtractionLandmarkFile.h"
 #include "itkMeshExtractionPLY.h"
-#include "itkMeshExtractionShapeModelBuilder.h"
+#include "itkMeshExtractionShapeModelEvaluation.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -41,7 +40,7 @@ namespace MeshExtractionCLI
 {
 namespace
 {
-using Estimator = itk::LandmarkFreeShapeModelEstimator<IOMeshType>;
+using Estimator = ShapeModelEstimator;
 using Correspondence = itk::MeshExtractionEnums::Correspondence;
 
 const OptionNames<Correspondence> &
@@ -104,6 +103,13 @@ struct ModelSummary
   std::size_t         pivot{ 0 };
   std::size_t         passes{ 0 };
   std::size_t         meshes{ 0 };
+
+  /** The cumulative fraction of the variance in the first k + 1 modes (all modes). */
+  std::vector<double>
+  Cumulative() const
+  {
+    return ME::detail::CumulativeVarianceFractions(allVariances);
+  }
 };
 
 ModelSummary
@@ -116,15 +122,13 @@ Summarize(const ME::detail::ShapeModelBuildResult & result)
 void
 PrintModel(const ModelSummary & summary, double seconds)
 {
-  const double total = summary.totalVariance;
   std::cout << "model built in " << std::fixed << std::setprecision(1) << seconds << " s: pivot input "
             << summary.pivot << ", " << summary.passes << " template passes, " << summary.variances.size()
             << " modes\ncumulative variance (%):";
-  double sum = 0.0;
+  const std::vector<double> cumulative = summary.Cumulative();
   for (std::size_t k = 0; k < summary.variances.size(); ++k)
   {
-    sum += summary.variances[k];
-    std::cout << ' ' << k + 1 << ':' << 100.0 * sum / total;
+    std::cout << ' ' << k + 1 << ':' << 100.0 * cumulative[k];
   }
   std::cout << std::defaultfloat << '\n';
 }
@@ -144,12 +148,11 @@ void
 WriteSummary(const ModelSummary & summary, const std::string & path)
 {
   WriteTextWhole(path, [&summary](std::ostream & out) {
-    const double total = summary.totalVariance;
     out << std::setprecision(17) << "{\"modes\": " << summary.variances.size() << ", \"variances\": ";
     WriteNumbers(out, summary.variances);
     out << ", \"all_variances\": ";
     WriteNumbers(out, summary.allVariances);
-    out << ", \"total_variance\": " << ME::detail::JSONNumber{ total } << ", \"pivot\": " << summary.pivot
+    out << ", \"total_variance\": " << ME::detail::JSONNumber{ summary.totalVariance } << ", \"pivot\": " << summary.pivot
         << ", \"passes\": " << summary.passes << ", \"meshes\": " << summary.meshes << "}\n";
   });
 }
@@ -167,20 +170,16 @@ Stems(const std::vector<std::string> & paths)
   return stems;
 }
 
-/** The cumulative variance against the number of modes (thesis Fig. 7.2), as SVG. */
+/** The cumulative variance against the number of modes (thesis Fig. 7.2), as SVG; the
+ * first `kept` modes marked. */
 void
-WriteCompactnessSVG(const std::vector<double> & allVariances, std::size_t kept, const std::string & path)
+WriteCompactnessSVG(const std::vector<double> & cumulative, std::size_t kept, const std::string & path)
 {
   WriteTextWhole(path, [&](std::ostream & out) {
-    const double width = 520, height = 300, left = 50, top = 30, plotWidth = 440, plotHeight = 220;
-    double       total = 0.0;
-    for (double v : allVariances)
-    {
-      total += v;
-    }
-    const std::size_t n = allVariances.size();
+    const double      width = 520, height = 300, left = 50, top = 30, plotWidth = 440, plotHeight = 220;
+    const std::size_t n = cumulative.size();
     const auto        x = [&](double k) { return left + plotWidth * k / static_cast<double>(n); };
-    const auto        y = [&](double percent) { return top + plotHeight * (1.0 - percent / 100.0); };
+    const auto        y = [&](double fraction) { return top + plotHeight * (1.0 - fraction); };
     out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
         << "' font-family='sans-serif' font-size='11'>\n<text x='" << left
         << "' y='18' font-size='13'>Cumulative variance (%) against the number of modes</text>\n"
@@ -188,21 +187,18 @@ WriteCompactnessSVG(const std::vector<double> & allVariances, std::size_t kept, 
         << "' fill='none' stroke='#999'/>\n";
     for (int percent = 0; percent <= 100; percent += 20)
     {
-      out << "<text x='" << left - 6 << "' y='" << y(percent) + 4 << "' text-anchor='end'>" << percent << "</text>\n";
+      out << "<text x='" << left - 6 << "' y='" << y(percent / 100.0) + 4 << "' text-anchor='end'>" << percent
+          << "</text>\n";
     }
     out << "<polyline fill='none' stroke='#4e79a7' stroke-width='2' points='" << x(0) << ',' << y(0);
-    double sum = 0.0;
     for (std::size_t k = 0; k < n; ++k)
     {
-      sum += allVariances[k];
-      out << ' ' << x(k + 1) << ',' << y(100.0 * sum / total);
+      out << ' ' << x(k + 1) << ',' << y(cumulative[k]);
     }
     out << "'/>\n";
-    sum = 0.0;
     for (std::size_t k = 0; k < n; ++k)
     {
-      sum += allVariances[k];
-      out << "<circle cx='" << x(k + 1) << "' cy='" << y(100.0 * sum / total) << "' r='3' fill='"
+      out << "<circle cx='" << x(k + 1) << "' cy='" << y(cumulative[k]) << "' r='3' fill='"
           << (k < kept ? "#4e79a7" : "#bbb") << "'/>\n<text x='" << x(k + 1) << "' y='" << top + plotHeight + 14
           << "' text-anchor='middle'>" << k + 1 << "</text>\n";
     }
@@ -220,16 +216,18 @@ WriteModelReport(const ModelSummary &                                           
                  const std::string &                                                       directory)
 {
   std::filesystem::create_directories(directory);
-  const std::size_t modes = summary.variances.size();
-  WriteCompactnessSVG(summary.allVariances, modes, directory + "/compactness.svg");
+  const std::size_t         modes = summary.variances.size();
+  const std::vector<double> cumulative = summary.Cumulative();
+  WriteCompactnessSVG(cumulative, modes, directory + "/compactness.svg");
   RenderOptions view;
   view.width = 360;
   view.height = 300;
   const auto render = [&](const std::vector<double> & b, const std::string & file) {
     RenderMesh(synthesize(b), view, directory + "/" + file);
   };
-  render({}, "mean.png");
-  const std::size_t points = synthesize({}).points.size();
+  const ME::IndexedTriangleMesh mean = synthesize({});
+  RenderMesh(mean, view, directory + "/mean.png");
+  const std::size_t points = mean.points.size();
   const std::size_t shown = std::min<std::size_t>(3, modes);
   for (std::size_t mode = 0; mode < shown; ++mode)
   {
@@ -248,14 +246,12 @@ WriteModelReport(const ModelSummary &                                           
         << HtmlEscape(summary.pivot < names.size() ? names[summary.pivot] : std::to_string(summary.pivot)) << ", "
         << summary.passes << " template passes, " << points << " points, " << modes << " modes kept.</p>\n<h2>Compactness</h2>\n<img src='compactness.svg'>\n"
         << "<table><tr><th>mode</th><th>variance (mm&sup2;)</th><th>%</th><th>cumulative %</th></tr>\n";
-    double sum = 0.0;
     for (std::size_t k = 0; k < summary.allVariances.size(); ++k)
     {
-      sum += summary.allVariances[k];
       out << "<tr><td>" << k + 1 << (k < modes ? "" : " (not kept)") << "</td><td>" << std::setprecision(6)
           << summary.allVariances[k] << "</td><td>" << std::fixed << std::setprecision(1)
-          << 100.0 * summary.allVariances[k] / summary.totalVariance << "</td><td>"
-          << 100.0 * sum / summary.totalVariance << "</td></tr>\n"
+          << 100.0 * summary.allVariances[k] / summary.totalVariance << "</td><td>" << 100.0 * cumulative[k]
+          << "</td></tr>\n"
           << std::defaultfloat;
     }
     out << "</table>\n<h2>The mean and the first modes at &minus;2 and +2 standard deviations</h2>\n"
@@ -291,11 +287,7 @@ RunShapeModel(const Arguments & args)
     meshes.push_back(ReadTrainingMesh(path));
     estimator->AddInputMesh(meshes.back());
   }
-  estimator->SetCorrespondence(
-    ChooseOption(args, "correspondence", CorrespondenceNames(), Correspondence::PointToSurface));
-  estimator->SetNonRigidCorrespondence(!args.Has("thesis"));
-  estimator->SetVarianceFraction(args.GetDouble("variance-fraction", 0.95));
-  estimator->SetMaximumNumberOfPasses(static_cast<unsigned int>(args.GetInteger("passes", 2)));
+  ConfigureShapeModelEstimator(*estimator, args);
   Stopwatch watch;
   estimator->Update();
   ModelSummary summary;
@@ -331,16 +323,6 @@ RunShapeModel(const Arguments & args)
 // prepare, match (per mesh, per pass), renew (the pass's reduction), finish (Procrustes
 // and PCA). Points travel between the steps as double-precision PLY and the similarities
 // as JSON numbers of 17 digits, so the steps give the model `build` gives.
-
-ME::detail::ShapeModelSettings
-SettingsOf(const Arguments & args)
-{
-  ME::detail::ShapeModelSettings settings;
-  settings.correspondence = ChooseOption(args, "correspondence", CorrespondenceNames(), Correspondence::PointToSurface);
-  settings.nonRigid = !args.Has("thesis");
-  settings.varianceFraction = args.GetDouble("variance-fraction", 0.95);
-  return settings;
-}
 
 /** A mesh a step wrote (or any mesh): PLY read as it is, in double precision (the CLI's
  * itk::Mesh holds float coordinates, which would round what the steps pass on). */
@@ -497,7 +479,7 @@ RunMatch(const Arguments & args)
   }
   const ME::IndexedTriangleMesh    templateMesh = ReadPrepared(args.positional[1]);
   const ME::IndexedTriangleMesh    mesh = ReadPrepared(args.positional[2]);
-  const auto                       settings = SettingsOf(args);
+  const auto                       settings = ShapeModelSettingsOf(args);
   ME::detail::SimilarityParameters initial;
   if (args.Has("initial"))
   {
@@ -536,7 +518,7 @@ RunRenew(const Arguments & args)
 {
   const ME::IndexedTriangleMesh     templateMesh = ReadPrepared(args.positional[1]);
   const ME::detail::RenewedTemplate renewed =
-    ME::detail::RenewTemplate(templateMesh, ReadMatchStates(args), SettingsOf(args));
+    ME::detail::RenewTemplate(templateMesh, ReadMatchStates(args), ShapeModelSettingsOf(args));
   WritePoints(args.Get("output"), templateMesh, renewed.points);
   WriteTextWhole(args.Get("json"), [&](std::ostream & out) {
     out << std::setprecision(17) << "{\"change\": " << ME::detail::JSONNumber{ renewed.change } << ", \"gauge\": ";
@@ -557,17 +539,13 @@ RunFinish(const Arguments & args)
   result.pivot = static_cast<std::size_t>(args.GetInteger("pivot", 0));
   for (const ME::detail::TemplateMatch & match : ReadMatchStates(args))
   {
-    if (match.corresponded.size() != templateMesh.points.size())
-    {
-      itkGenericExceptionMacro(<< "A corresponded mesh has " << match.corresponded.size() << " points, the template "
-                               << templateMesh.points.size() << ": it was not matched to this template.");
-    }
+    ME::detail::CheckMatchOfTemplate(templateMesh, match);
     result.corresponded.push_back(match.corresponded);
     result.e2.push_back(match.e2);
   }
   result.templateChanges.assign(static_cast<std::size_t>(args.GetInteger("passes", 2)), 0.0);
   Stopwatch watch;
-  ME::detail::FinishShapeModel(result, SettingsOf(args).varianceFraction);
+  ME::detail::FinishShapeModel(result, ShapeModelSettingsOf(args).varianceFraction);
   const ModelSummary summary = Summarize(result);
   PrintModel(summary, watch.Seconds());
   if (args.Has("report"))
@@ -657,7 +635,7 @@ RunProject(const Arguments & args)
   ME::IndexedTriangleMesh                 mean = ME::detail::ModelMesh(result, result.model.mean);
   const ME::IndexedTriangleMesh           mesh = ReadPrepared(args.positional[2]);
   Stopwatch                               watch;
-  const ME::detail::TemplateMatch match = ME::detail::MatchTemplate(mean, mesh, SettingsOf(args), nullptr);
+  const ME::detail::TemplateMatch match = ME::detail::MatchTemplate(mean, mesh, ShapeModelSettingsOf(args), nullptr);
   const std::vector<double>       b = ME::detail::ProjectInStandardDeviations(result, match.corresponded);
   const ME::detail::Shape         aligned =
     ME::detail::ApplySimilarity(ME::detail::AlignShape(match.corresponded, mean.points, true), match.corresponded);
@@ -754,6 +732,27 @@ RunVerb(const Arguments & given)
   return verb->run(args);
 }
 } // namespace
+
+ME::detail::ShapeModelSettings
+ShapeModelSettingsOf(const Arguments & args)
+{
+  ME::detail::ShapeModelSettings settings;
+  settings.correspondence = ChooseOption(args, "correspondence", CorrespondenceNames(), Correspondence::PointToSurface);
+  settings.nonRigid = !args.Has("thesis");
+  settings.varianceFraction = args.GetDouble("variance-fraction", 0.95);
+  settings.maximumNumberOfPasses = static_cast<unsigned int>(args.GetInteger("passes", 2));
+  return settings;
+}
+
+void
+ConfigureShapeModelEstimator(ShapeModelEstimator & estimator, const Arguments & args)
+{
+  const ME::detail::ShapeModelSettings settings = ShapeModelSettingsOf(args);
+  estimator.SetCorrespondence(settings.correspondence);
+  estimator.SetNonRigidCorrespondence(settings.nonRigid);
+  estimator.SetVarianceFraction(settings.varianceFraction);
+  estimator.SetMaximumNumberOfPasses(settings.maximumNumberOfPasses);
+}
 
 Command
 MakeShapeModelCommand()

@@ -23,12 +23,10 @@
 // where each mesh has a landmark file (same name, .json), the subject-to-subject landmark
 // transfer error.
 
-#include "MeshExtractionCLI.h"
+#include "MeshExtractionShapeModelCLI.h"
 
-#include "itkLandmarkFreeShapeModelEstimator.h"
 #include "itkMeshExtractionLandmarkFile.h"
 #include "itkMeshExtractionSelfIntersections.h"
-#include "itkMeshExtractionShapeModelBuilder.h"
 #include "itkMeshExtractionShapeModelEvaluation.h"
 
 #include <algorithm>
@@ -42,7 +40,7 @@ namespace MeshExtractionCLI
 {
 namespace
 {
-using Estimator = itk::LandmarkFreeShapeModelEstimator<IOMeshType>;
+using Estimator = ShapeModelEstimator;
 namespace detail = itk::MeshExtraction::detail;
 
 /** The training set: meshes, prepared originals and landmarks (empty without a file). */
@@ -214,16 +212,11 @@ EvaluateShapeModel(const Arguments & args, const std::vector<std::string> & inpu
   {
     estimator->AddInputMesh(mesh);
   }
-  const bool nonRigid = !args.Has("thesis");
-  const bool pointToPoint = args.Get("correspondence", "surface") == "point";
-  estimator->SetNonRigidCorrespondence(nonRigid);
-  estimator->SetMaximumNumberOfPasses(static_cast<unsigned int>(args.GetInteger("passes", 2)));
-  estimator->SetVarianceFraction(args.GetDouble("variance-fraction", 0.95));
-  if (pointToPoint)
-  {
-    estimator->SetCorrespondence(itk::MeshExtractionEnums::Correspondence::PointToPoint);
-  }
-  std::cout << set.meshes.size() << " meshes; " << (nonRigid ? "non-rigid stage" : "thesis (closest points)") << ", "
+  ConfigureShapeModelEstimator(*estimator, args);
+  const bool pointToPoint =
+    estimator->GetCorrespondence() == itk::MeshExtractionEnums::Correspondence::PointToPoint;
+  std::cout << set.meshes.size() << " meshes; "
+            << (estimator->GetNonRigidCorrespondence() ? "non-rigid stage" : "thesis (closest points)") << ", "
             << (pointToPoint ? "point-to-point" : "point-to-surface") << '\n';
   Stopwatch watch;
   estimator->Update();
