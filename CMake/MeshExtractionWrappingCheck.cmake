@@ -93,6 +93,7 @@ endforeach()
 # The superclass ITK's wrapping makes of a class wrapped POINTER_WITH_SUPERCLASS: its
 # name and how many of the class's template arguments it takes.
 set(_meshextraction_superclass_itk::SurfaceNetsImageToMeshFilter "itk::ImageToMeshFilter;2")
+set(_meshextraction_superclass_itk::MultiLabelSurfaceNetsImageToMeshFilter "itk::ImageToMeshFilter;2")
 
 # The first `count` top-level template arguments of `arguments` (commas inside < > kept).
 function(_meshextraction_first_arguments _arguments _count _var)

@@ -43,6 +43,8 @@
 #include "itkMeshExtractionPhantoms.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
 #include "itkMeshSurfaceDistanceCalculator.h"
+#include "itkImageFileReader.h"
+#include "itkMultiLabelSurfaceNetsImageToMeshFilter.h"
 #include "itkMultiThreaderBase.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 #include "itkTriangleMeshQualityCalculator.h"
@@ -60,7 +62,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <array>
+#include <limits>
 #include <map>
+#include <random>
 #if defined(__unix__) || defined(__APPLE__)
 #  include <sys/resource.h>
 #endif
@@ -115,6 +120,65 @@ SphereLabels(unsigned int n)
       const double dx = i[0] - c, dy = i[1] - c, dz = i[2] - c;
       it.Set(dx * dx + dy * dy + dz * dz <= r * r ? 1 : 0);
     }
+  }
+  return image.GetPointer();
+}
+
+using LabelMapType = itk::Image<unsigned short, 3>;
+
+/** A label map of many labels: the map MESHEXTRACTION_LABEL_MAP names (what
+ * benchmark/peers/compare-labels.py hands VTK too), or 100 Voronoi cells of random
+ * seeds (uniform in [0.15 N, 0.85 N]^3) inside a ball of radius 0.4 N, N^3 voxels. */
+const LabelMapType *
+VoronoiLabels(unsigned int n)
+{
+  static std::map<unsigned int, LabelMapType::Pointer> cache;
+  auto &                                               image = cache[n];
+  if (image.IsNotNull())
+  {
+    return image.GetPointer();
+  }
+  if (const char * path = std::getenv("MESHEXTRACTION_LABEL_MAP"))
+  {
+    auto reader = itk::ImageFileReader<LabelMapType>::New();
+    reader->SetFileName(path);
+    reader->Update();
+    image = reader->GetOutput();
+    return image.GetPointer();
+  }
+  std::mt19937                           rng(1);
+  std::uniform_real_distribution<double> at(0.15 * n, 0.85 * n);
+  std::vector<std::array<double, 3>>     seeds(100);
+  for (auto & seed : seeds)
+  {
+    seed = { { at(rng), at(rng), at(rng) } };
+  }
+  image = LabelMapType::New();
+  LabelMapType::SizeType size;
+  size.Fill(n);
+  image->SetRegions(size);
+  image->Allocate();
+  const double c = 0.5 * (n - 1.0);
+  for (itk::ImageRegionIteratorWithIndex<LabelMapType> it(image, image->GetBufferedRegion()); !it.IsAtEnd(); ++it)
+  {
+    const auto & i = it.GetIndex();
+    const double dx = i[0] - c, dy = i[1] - c, dz = i[2] - c;
+    unsigned short label = 0;
+    if (dx * dx + dy * dy + dz * dz <= 0.16 * n * n)
+    {
+      double best = std::numeric_limits<double>::max();
+      for (std::size_t k = 0; k < seeds.size(); ++k)
+      {
+        const double d = (i[0] - seeds[k][0]) * (i[0] - seeds[k][0]) + (i[1] - seeds[k][1]) * (i[1] - seeds[k][1]) +
+                         (i[2] - seeds[k][2]) * (i[2] - seeds[k][2]);
+        if (d < best)
+        {
+          best = d;
+          label = static_cast<unsigned short>(k + 1);
+        }
+      }
+    }
+    it.Set(label);
   }
   return image.GetPointer();
 }
@@ -526,6 +590,32 @@ RegisterExtraction(const std::string &                             name,
     }
   }
 }
+/** Every label of a label map in one pass, the faces between labels shared
+ * (MultiLabelSurfaceNetsImageToMeshFilter, SNA), on VoronoiLabels. */
+void
+MultiLabelSurfaceNets(benchmark::State & state)
+{
+  const auto           n = static_cast<unsigned int>(state.range(0));
+  const auto           threads = static_cast<unsigned int>(state.range(1));
+  const LabelMapType * image = VoronoiLabels(n);
+  auto                 extract = [&]() {
+    auto filter = itk::MultiLabelSurfaceNetsImageToMeshFilter<LabelMapType, MeshType>::New();
+    filter->SetInput(image);
+    filter->SetNumberOfWorkUnits(threads);
+    filter->Update();
+    return MeshType::Pointer(filter->GetOutput());
+  };
+  std::size_t triangles = 0;
+  extract(); // the warm-up run (see WarmUpNote)
+  for (auto _ : state)
+  {
+    const auto        start = Clock::now();
+    MeshType::Pointer mesh = extract();
+    state.SetIterationTime(Seconds(start));
+    triangles = mesh->GetNumberOfCells();
+  }
+  SetCounters(state, n, triangles, threads);
+}
 } // namespace
 
 int
@@ -563,6 +653,7 @@ main(int argc, char ** argv)
   RegisterExtraction(
     "SurfaceNets/HQ", { 128, 256 }, [](benchmark::State & s) { SurfaceNets(s, Relaxation::Combined, true); });
   RegisterExtraction("Labels/SNA", sizes, [](benchmark::State & s) { LabelSurfaceNets(s, false); });
+  RegisterExtraction("Labels/MultiLabel", { 256 }, MultiLabelSurfaceNets);
   RegisterExtraction("Labels/HQ", { 128, 256 }, [](benchmark::State & s) { LabelSurfaceNets(s, true); });
 #ifdef MESHEXTRACTION_BENCHMARK_WITH_VTK
   RegisterExtraction("VTK/FlyingEdges3D", sizes, [](benchmark::State & s) { VTKMethod(s, "fe"); });

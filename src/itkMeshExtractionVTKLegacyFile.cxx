@@ -541,6 +541,23 @@ WriteVTKLegacyFile(const std::string & fileName, const PolygonMesh & mesh, const
   {
     (version5 ? WriteOffsetPolygons : WriteCountedPolygons)(out, mesh, binary);
   }
+  if (!mesh.cellArrays.empty())
+  {
+    out << "CELL_DATA " << mesh.NumberOfPolygons() << "\nFIELD FieldData " << mesh.cellArrays.size() << '\n';
+    for (const auto & array : mesh.cellArrays)
+    {
+      out << array.name << ' ' << array.components << ' ' << mesh.NumberOfPolygons() << " int\n";
+      if (binary)
+      {
+        WriteBigEndian<std::int32_t>(out, array.values);
+        continue;
+      }
+      for (std::size_t i = 0; i < array.values.size(); ++i)
+      {
+        out << array.values[i] << ((i + 1) % array.components == 0 ? '\n' : ' ');
+      }
+    }
+  }
   FinishWriting(out, Format, fileName);
 }
 } // namespace detail

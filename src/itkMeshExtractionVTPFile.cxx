@@ -706,7 +706,17 @@ WriteVTKXMLPolyDataFile(const std::string & fileName, const PolygonMesh & mesh, 
   out << "      </Points>\n      <Polys>\n";
   WriteArray<std::int64_t>(out, "Int64", "connectivity", 1, mesh.polygonIndices, ascii);
   WriteArray<std::int64_t>(out, "Int64", "offsets", 1, offsets, ascii);
-  out << "      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  out << "      </Polys>\n";
+  if (!mesh.cellArrays.empty())
+  {
+    out << "      <CellData>\n";
+    for (const auto & array : mesh.cellArrays)
+    {
+      WriteArray<std::int32_t>(out, "Int32", array.name.c_str(), static_cast<int>(array.components), array.values, ascii);
+    }
+    out << "      </CellData>\n";
+  }
+  out << "    </Piece>\n  </PolyData>\n</VTKFile>\n";
   FinishWriting(out, Format, fileName);
 }
 } // namespace detail

@@ -24,6 +24,8 @@
 #include "itkMeshExtractionMeshFile.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkCubeSource.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
@@ -322,4 +324,52 @@ TEST(MeshFileVTK, VTKReadsWhatTheModuleWrites)
     ME::WritePolygonMeshFile(obj, mesh);
     ExpectSameMesh(ReadWithVTK<vtkOBJReader>(obj), mesh, 1e-7);
   }
+}
+
+// Cell arrays (a multi-label surface's two labels per face): VTK reads them back from the
+// legacy format (a FIELD of CELL_DATA, both versions and encodings) and from VTP.
+TEST(MeshFileVTK, VTKReadsTheCellArraysTheModuleWrites)
+{
+  using Options = ME::MeshFileWriteOptions;
+  ME::PolygonMesh            mesh = FromPolyData(MakePolyData(false));
+  ME::PolygonMesh::CellArray labels;
+  labels.name = "labels";
+  labels.components = 2;
+  for (std::size_t f = 0; f < mesh.NumberOfPolygons(); ++f)
+  {
+    labels.values.push_back(static_cast<std::int32_t>(f % 3));
+    labels.values.push_back(static_cast<std::int32_t>(1000 + f));
+  }
+  mesh.cellArrays.push_back(labels);
+  auto expectArray = [&](vtkPolyData * read) {
+    ExpectSameMesh(read, mesh, 1e-15);
+    vtkDataArray * array = read->GetCellData()->GetArray("labels");
+    ASSERT_NE(array, nullptr);
+    ASSERT_EQ(array->GetNumberOfComponents(), 2);
+    ASSERT_EQ(static_cast<std::size_t>(array->GetNumberOfTuples()), mesh.NumberOfPolygons());
+    for (std::size_t f = 0; f < mesh.NumberOfPolygons(); ++f)
+    {
+      ASSERT_EQ(array->GetComponent(static_cast<vtkIdType>(f), 0), static_cast<double>(labels.values[2 * f]));
+      ASSERT_EQ(array->GetComponent(static_cast<vtkIdType>(f), 1), static_cast<double>(labels.values[2 * f + 1]));
+    }
+  };
+  for (const auto encoding : { Options::Encoding::ASCII, Options::Encoding::Binary })
+  {
+    for (const auto version : { Options::VTKLegacyVersion::V4_2, Options::VTKLegacyVersion::V5_1 })
+    {
+      const std::string path = TemporaryPath("labels.vtk");
+      ME::WritePolygonMeshFile(path, mesh, Options{ encoding, version });
+      vtkNew<vtkPolyDataReader> reader;
+      reader->SetFileName(path.c_str());
+      reader->ReadAllFieldsOn();
+      reader->Update();
+      expectArray(reader->GetOutput());
+    }
+    const std::string vtp = TemporaryPath("labels.vtp");
+    ME::WritePolygonMeshFile(vtp, mesh, Options{ encoding });
+    expectArray(ReadWithVTK<vtkXMLPolyDataReader>(vtp));
+  }
+  // The module's own readers leave the array out and read the surface.
+  const ME::PolygonMesh back = ME::ReadPolygonMeshFile(TemporaryPath("labels.vtk"));
+  EXPECT_EQ(back.NumberOfPolygons(), mesh.NumberOfPolygons());
 }

@@ -7,7 +7,8 @@ pinned in requirements.txt) against the module's SNA and high-quality mode on th
       --benchmarks build/benchmark/MeshExtractionBenchmarks [--sizes 128 256] [--out DIR]
 
 A second table: a synthetic map of 100 labels (Voronoi cells in a ball, --many-labels N, 256³
-by default): VTK's filters over all labels in one pass against the module's
+by default): VTK's filters over all labels in one pass against the module's one-pass filter
+(MultiLabelSurfaceNetsImageToMeshFilter, its benchmark Labels/MultiLabel on the same map) and
 `extract --all-labels` (one closed surface per label, each checked valid).
 
 Masks: the module's sphere phantom (`phantom sphere --image-mode mask`, radius 0.3 N, 1 mm
@@ -141,10 +142,26 @@ def write_mha(path, a):
         f.write(np.ascontiguousarray(a, np.uint16).tobytes())
 
 
-def many_labels(tool, workdir, n, count, runs):
+def multi_label_filter_times(benchmarks, path, n):
+    """The module's one-pass filter (Labels/MultiLabel) on the map at `path`, 1 and 2 threads (ms)."""
+    out = subprocess.run([benchmarks, "--benchmark_filter=Labels/MultiLabel/size:{}/".format(n),
+                          "--benchmark_format=json", "--benchmark_repetitions=3"],
+                         check=True, capture_output=True, text=True,
+                         env=dict(os.environ, MESHEXTRACTION_LABEL_MAP=path)).stdout
+    times = {}
+    for b in json.loads(out)["benchmarks"]:
+        if b.get("aggregate_name") == "median":
+            threads = int(dict(p.split(":") for p in b["name"].split("/")[2:] if ":" in p)["threads"])
+            times[threads] = (b["real_time"], int(b.get("triangles", 0)))
+    return times
+
+
+def many_labels(tool, benchmarks, workdir, n, count, runs):
     """The synthetic label map: VTK's filters over every label at once, and the module's
-    extract --all-labels (one surface per label; the command's wall-clock time, reading and
-    writing included), each surface checked by `quality --require-valid`."""
+    one-pass filter (its benchmark on the same map) and extract --all-labels (the command's
+    wall-clock time, reading and writing included: one pass with shared faces by default,
+    --separate-labels and --quality high each label on its own), each label's surface
+    checked by `quality --require-valid`."""
     labels = voronoi_labels(n, count)
     present = [int(v) for v in np.unique(labels) if v > 0]
     path = os.path.join(workdir, "voronoi{}.mha".format(n))
@@ -171,22 +188,27 @@ def many_labels(tool, workdir, n, count, runs):
             times.append(best)
         print("| {} (VTK {}, one pass) | {:.0f} / {:.0f} | {} | not measured |".format(
             name, vtk.vtkVersion.GetVTKVersion(), times[0], times[1], f.GetOutput().GetNumberOfCells()))
-    for quality in ("standard", "high"):
-        out = os.path.join(workdir, "voronoi-" + quality)
+    filter_times = multi_label_filter_times(benchmarks, path, n)
+    if 1 in filter_times:
+        print("| module MultiLabelSurfaceNetsImageToMeshFilter (filter alone, one pass) | {:.0f} / {:.0f} | {} | "
+              "(below) |".format(filter_times[1][0], filter_times.get(2, (float("nan"), 0))[0], filter_times[1][1]))
+    for label, options in (("one pass, shared faces", []), ("--separate-labels", ["--separate-labels"]),
+                           ("--quality high", ["--quality", "high"])):
+        out = os.path.join(workdir, "voronoi-" + (options[-1].strip("-") if options else "shared"))
         os.makedirs(out, exist_ok=True)
         times = []
         for threads in (1, 2):
             start = time.perf_counter()
-            subprocess.run([tool, "extract", path, os.path.join(out, "v.vtp"), "--all-labels", "--quality", quality,
-                            "--threads", str(threads)], check=True, capture_output=True)
+            subprocess.run([tool, "extract", path, os.path.join(out, "v.vtp"), "--all-labels",
+                            "--threads", str(threads)] + options, check=True, capture_output=True)
             times.append(1000.0 * (time.perf_counter() - start))
         meshes = sorted(os.path.join(out, m) for m in os.listdir(out) if m.endswith(".vtp"))
         check = subprocess.run([tool, "quality"] + meshes + ["--no-self-intersections", "--require-valid"],
                                capture_output=True, text=True)
         triangles = sum(int(m.group(1)) for m in re.finditer(r"\), triangles (\d+),", check.stdout))
-        print("| module extract --all-labels --quality {} (whole command) | {:.0f} / {:.0f} | {} | {} of {} |".format(
-            quality, times[0], times[1], triangles or "-", len(meshes) if check.returncode == 0 else "not all",
-            len(meshes)))
+        print("| module extract --all-labels, {} (whole command) | {:.0f} / {:.0f} | {} (the labels' surfaces) | "
+              "{} of {} |".format(label, times[0], times[1], triangles or "-",
+                                  len(meshes) if check.returncode == 0 else "not all", len(meshes)))
 
 
 def main():
@@ -236,7 +258,7 @@ def main():
               f"{r['ms_1'] / r['ms_2']:.2f}x |")
     json.dump(rows, open(os.path.join(workdir, "results.json"), "w"), indent=1)
     if args.many_labels > 0:
-        many_labels(tool, workdir, args.many_labels, 100, args.runs)
+        many_labels(tool, args.benchmarks, workdir, args.many_labels, 100, args.runs)
     print(f"\nmeshes and results.json in {workdir}", file=sys.stderr)
 
 

@@ -22,6 +22,7 @@
 #include "itkImageRegionConstIterator.h"
 #include "itkImageRegionIterator.h"
 #include "itkImplicitSurfaceImageSource.h"
+#include "itkMultiLabelSurfaceNetsImageToMeshFilter.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include <cctype>
@@ -626,23 +627,31 @@ ChosenLabels(const Arguments & args, const std::map<unsigned int, LabelExtent> &
   return chosen;
 }
 
-/** extract LABELS OUTPUT --all-labels: one closed surface per label, each from its own
- * crop of the map, written as OUTPUT-<label>[-<name>].<ext>. */
+/** The name of label `label`'s file, and its name ("" without a colour table). */
+std::string
+LabelFileName(const std::string &                         output,
+              unsigned int                                label,
+              const std::map<unsigned int, std::string> & names,
+              std::string &                               name)
+{
+  const auto found = names.find(label);
+  name = found != names.end() ? found->second : std::string();
+  return LabelOutputName(output, label, name);
+}
+
+/** --separate-labels (and --quality high): each label from its own crop of the map, as
+ * a single-label extraction; neighbours' boundaries are made twice. */
 int
-RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings & writeSettings)
+RunSeparateLabels(const Arguments &                           args,
+                  ExtractSettings                             s,
+                  const MeshWriteSettings &                   writeSettings,
+                  const LabelMapType *                        labels,
+                  const std::map<unsigned int, LabelExtent> & extents,
+                  const std::map<unsigned int, std::string> & names,
+                  const std::vector<unsigned int> &           chosen)
 {
   const std::string input = args.positional[0];
   const std::string output = args.positional[1];
-  std::cerr << "extract: " << input << ", every label\n";
-  const auto labels = ReadLabelImage<LabelMapType>(input, 1.0);
-  const auto extents = MeasureLabels(labels);
-  if (extents.empty())
-  {
-    itkGenericExceptionMacro("'" << input << "' has no voxel with a label other than 0: there is no surface");
-  }
-  const auto names =
-    args.Has("label-names") ? ReadLabelNames(args.Get("label-names")) : std::map<unsigned int, std::string>();
-  const auto chosen = ChosenLabels(args, extents);
   s.byLabel = true;
   s.label = 1.0; // of each label's crop, a mask
   std::ostringstream table;
@@ -651,9 +660,8 @@ RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings 
         << "  file\n";
   for (const unsigned int label : chosen)
   {
-    const auto        found = names.find(label);
-    const std::string name = found != names.end() ? found->second : std::string();
-    const std::string path = LabelOutputName(output, label, name);
+    std::string       name;
+    const std::string path = LabelFileName(output, label, names, name);
     std::cerr << "label " << label << (name.empty() ? "" : " (" + name + ")") << ": " << extents.at(label).voxels
               << " voxels\n";
     const auto mask = CropLabelMask(labels, label, extents.at(label));
@@ -666,7 +674,171 @@ RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings 
       ReportOnMesh(args, mesh, nullptr, path);
     }
   }
-  std::cout << chosen.size() << " labels of " << extents.size() << " in " << input << ":\n" << table.str();
+  std::cout << chosen.size() << " labels of " << extents.size() << " in " << input << ", each on its own:\n"
+            << table.str();
+  return 0;
+}
+
+/** --label-thresholds T1,T2,...: a label map of a greyscale image, label k the voxels in
+ * [T_k, T_k+1) (the last: from T_K up), 0 below T1; e.g. soft tissue and bone of a CT. */
+LabelMapType::Pointer
+ThresholdLabels(const std::string & path, const std::string & list)
+{
+  std::vector<double> thresholds;
+  std::string         text = list;
+  for (char & c : text)
+  {
+    c = c == ',' ? ' ' : c;
+  }
+  std::istringstream in(text);
+  std::string        token;
+  while (in >> token)
+  {
+    thresholds.push_back(Arguments::ParseDouble("label-thresholds", token));
+    if (thresholds.size() > 1 && !(thresholds.back() > thresholds[thresholds.size() - 2]))
+    {
+      throw UsageError("--label-thresholds must increase, got '" + list + "'");
+    }
+  }
+  if (thresholds.empty())
+  {
+    throw UsageError("--label-thresholds names no threshold");
+  }
+  ReadScalarVolumeInformation(path, "INPUT");
+  const auto image = ReadImageFile<itk::Image<float, 3>>(path);
+  auto       labels = LabelMapType::New();
+  labels->CopyInformation(image);
+  labels->SetRegions(image->GetBufferedRegion());
+  labels->Allocate();
+  const float *     v = image->GetBufferPointer();
+  unsigned int *    out = labels->GetBufferPointer();
+  const std::size_t count = image->GetBufferedRegion().GetNumberOfPixels();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (std::isnan(v[i]))
+    {
+      itkGenericExceptionMacro("'" << path << "' has a NaN voxel (voxel " << i << " of the buffer)");
+    }
+    out[i] = static_cast<unsigned int>(std::upper_bound(thresholds.begin(), thresholds.end(), v[i]) -
+                                       thresholds.begin());
+  }
+  return labels;
+}
+
+/** extract LABELS OUTPUT --all-labels: every label's closed surface in one pass, the
+ * faces between neighbours shared (MultiLabelSurfaceNetsImageToMeshFilter), written as
+ * OUTPUT-<label>[-<name>].<ext>; with --combined FILE also every face once, with the
+ * two labels of each face (.vtk, .vtp: the cell array "labels"). */
+int
+RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings & writeSettings)
+{
+  const std::string input = args.positional[0];
+  const std::string output = args.positional[1];
+  std::cerr << "extract: " << input << ", every label\n";
+  const auto labels = args.Has("label-thresholds") ? ThresholdLabels(input, args.Get("label-thresholds"))
+                                                   : ReadLabelImage<LabelMapType>(input, 1.0);
+  const auto extents = MeasureLabels(labels);
+  if (extents.empty())
+  {
+    itkGenericExceptionMacro("'" << input << "' has no voxel with a label other than 0: there is no surface");
+  }
+  const auto names =
+    args.Has("label-names") ? ReadLabelNames(args.Get("label-names")) : std::map<unsigned int, std::string>();
+  const auto chosen = ChosenLabels(args, extents);
+  if (s.highQuality || args.Has("separate-labels"))
+  {
+    if (args.Has("combined"))
+    {
+      throw UsageError("--combined needs the labels' shared faces: not with --separate-labels or --quality high");
+    }
+    return RunSeparateLabels(args, s, writeSettings, labels, extents, names, chosen);
+  }
+  using Filter = itk::MultiLabelSurfaceNetsImageToMeshFilter<LabelMapType, ExtractMeshType>;
+  if (s.relaxation == SurfaceNetsEnums::Relaxation::Gradient || s.relaxation == SurfaceNetsEnums::Relaxation::Combined)
+  {
+    throw UsageError("--all-labels relaxes by averaging (sna) or not at all (none)");
+  }
+  if (s.triangulation == SurfaceNetsEnums::Triangulation::Quadrilaterals)
+  {
+    throw UsageError("--all-labels makes triangles: --triangulation shortest or delaunay");
+  }
+  auto filter = Filter::New();
+  filter->SetInput(labels);
+  filter->SetLabels(Filter::LabelListType(chosen.begin(), chosen.end()));
+  filter->SetMaximumNumberOfIterations(s.relaxation == SurfaceNetsEnums::Relaxation::None ? 0 : s.iterations);
+  filter->SetTriangulation(s.triangulation);
+  if (s.threads > 0)
+  {
+    filter->SetNumberOfWorkUnits(s.threads);
+  }
+  ReportProgress(filter.GetPointer(), "SurfaceNets of every label");
+  Stopwatch watch;
+  filter->Update();
+  std::cerr << "every label in one pass: " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n"
+            << std::defaultfloat;
+  const auto & faceLabels = filter->GetFaceLabels();
+  std::map<unsigned int, std::size_t> sharedFaces;
+  for (const auto & pair : faceLabels)
+  {
+    if (pair[0] != 0)
+    {
+      ++sharedFaces[pair[0]];
+      ++sharedFaces[pair[1]];
+    }
+  }
+  std::ostringstream table;
+  table << std::setw(10) << "label" << std::setw(12) << "voxels" << std::setw(10) << "points" << std::setw(10)
+        << "faces" << std::setw(10) << "shared"
+        << "  file\n";
+  for (const unsigned int label : chosen)
+  {
+    std::string       name;
+    const std::string path = LabelFileName(output, label, names, name);
+    const auto        mesh = filter->GetLabelSurface(label);
+    WriteMeshFile(mesh.GetPointer(), path, writeSettings);
+    table << std::setw(10) << label << std::setw(12) << extents.at(label).voxels << std::setw(10)
+          << mesh->GetNumberOfPoints() << std::setw(10) << mesh->GetNumberOfCells() << std::setw(10)
+          << sharedFaces[label] << "  " << path << '\n';
+    if (args.Has("report"))
+    {
+      ReportOnMesh(args, mesh, nullptr, path);
+    }
+  }
+  if (args.Has("combined"))
+  {
+    const ExtractMeshType * all = filter->GetOutput();
+    ME::PolygonMesh         combined;
+    for (auto it = all->GetPoints()->Begin(); it != all->GetPoints()->End(); ++it)
+    {
+      combined.points.push_back(ME::MakeVec3(it.Value()[0], it.Value()[1], it.Value()[2]));
+    }
+    for (auto it = all->GetCells()->Begin(); it != all->GetCells()->End(); ++it)
+    {
+      std::vector<std::uint32_t> corners(it.Value()->PointIdsBegin(), it.Value()->PointIdsEnd());
+      combined.AddPolygon(corners.data(), corners.size());
+    }
+    ME::PolygonMesh::CellArray pairs;
+    pairs.name = "labels";
+    pairs.components = 2;
+    for (const auto & pair : faceLabels)
+    {
+      pairs.values.push_back(static_cast<std::int32_t>(pair[0]));
+      pairs.values.push_back(static_cast<std::int32_t>(pair[1]));
+    }
+    combined.cellArrays.push_back(std::move(pairs));
+    ME::WritePolygonMeshFile(args.Get("combined"), combined, writeSettings.options);
+  }
+  std::cout << chosen.size() << " labels of " << extents.size() << " in " << input << ", in one pass: "
+            << faceLabels.size() << " faces, " << filter->GetOutput()->GetNumberOfPoints() << " nodes ("
+            << filter->GetNumberOfJunctionNodes() << " on junctions of 3 or more labels, "
+            << filter->GetNumberOfPinchedNodes() << " where a label touches itself, "
+            << filter->GetNumberOfNodesMovedBack() << " moved back), " << filter->GetNumberOfIterations()
+            << " iterations\n"
+            << table.str();
+  if (args.Has("combined"))
+  {
+    std::cout << "every face once, with its two labels: " << args.Get("combined") << '\n';
+  }
   return 0;
 }
 
@@ -684,7 +856,8 @@ RunExtract(const Arguments & args)
   RequireNotAnInput(output, inputs, "OUTPUT");
   const MeshWriteSettings writeSettings = ReadMeshWriteSettings(args);
   RequireNotAnInput(args.Get("report-json"), inputs, "--report-json");
-  if (args.Has("all-labels") || args.Has("label-list"))
+  RequireNotAnInput(args.Get("combined"), inputs, "--combined");
+  if (args.Has("all-labels") || args.Has("label-list") || args.Has("label-thresholds"))
   {
     if (fromPhantom || args.Has("labels") || args.Has("label") || args.Has("iso") || args.Has("report-json"))
     {
@@ -694,9 +867,9 @@ RunExtract(const Arguments & args)
     ReadMeshingOptions(args, s);
     return RunAllLabels(args, s, writeSettings);
   }
-  if (args.Has("label-names"))
+  if (args.Has("label-names") || args.Has("combined") || args.Has("separate-labels"))
   {
-    throw UsageError("--label-names goes with --all-labels or --label-list");
+    throw UsageError("--label-names, --combined and --separate-labels go with --all-labels or --label-list");
   }
   ReadObjectOptions(args, fromPhantom, s);
   ReadMeshingOptions(args, s);
@@ -800,10 +973,21 @@ MakeExtractCommand()
       "" },
     { "all-labels",
       "",
-      "INPUT is a label map: one closed surface per non-zero label, written as OUTPUT-<label>[-<name>].<ext> "
-      "(each from its own voxels; neighbours' shared boundaries are not shared faces)",
+      "INPUT is a label map: one closed surface per non-zero label, written as OUTPUT-<label>[-<name>].<ext>, "
+      "in one pass: neighbours share the faces of their boundary (SNA; --quality high: each label on its own)",
       "" },
+    { "combined",
+      "FILE",
+      "with --all-labels: also every face once, with its two labels (lower first; the normal points out of the "
+      "lower, 0 the outside) as the cell array 'labels' in .vtk and .vtp",
+      "" },
+    { "separate-labels", "", "with --all-labels: each label from its own voxels, as --label would", "" },
     { "label-list", "L,L,...", "--all-labels for these labels only", "" },
+    { "label-thresholds",
+      "T,T,...",
+      "--all-labels of INPUT's voxels by value: label k in [T_k, T_k+1), the last from T_K up, 0 below T_1 "
+      "(e.g. -300,300: soft tissue and bone of a CT)",
+      "" },
     { "label-names",
       "FILE",
       "names for the files from a colour table (3D Slicer .ctbl, or an ITK-SNAP label description)",
