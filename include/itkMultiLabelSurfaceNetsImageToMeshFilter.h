@@ -42,7 +42,11 @@ namespace itk
  *
  * Each label has the topology of its own binary SurfaceNet, so GetLabelSurface(label)
  * is a closed, oriented (outward) 2-manifold, as SurfaceNetsImageToMeshFilter's
- * surface of that label alone. Where the sheets of two labels share a crossing voxel
+ * surface of that label alone, with one difference: where two of a label's voxels meet
+ * only across a face diagonal and the other diagonal holds two different labels (or a
+ * label and the background), the label is joined across the face (alone it is not:
+ * 6-connected objects); in a checkerboard of two labels on a face the lower label
+ * joins. Where the sheets of two labels share a crossing voxel
  * edge in a cell they share the node, so the face between two labels is the same
  * triangles in both surfaces: neighbours are watertight against each other by
  * construction, without gaps or overlaps. Nodes are relaxed as by SNA (each to the
@@ -56,9 +60,11 @@ namespace itk
  * more labels meet (an edge of a junction line has a face to each pair of them).
  * GetFaceLabels() gives each face's two labels, the lower first, and the face's
  * normal points out of the lower label into the higher; the background counts as the
- * lowest. Where one label touches itself only across a diagonal that another label
- * crosses, its surface touches itself at that point (two vertices at one place): it
- * stays a 2-manifold, and GetNumberOfPinchedNodes() counts such places.
+ * lowest. Where a label still touches itself (the higher label of a checkerboard of
+ * two: its two sheets share a node), its own surface has two vertices there, moved a
+ * fiftieth of the way from the node toward their sheets, so that it stays a valid
+ * 2-manifold; the faces at such a node differ from the neighbour's copies by that
+ * much (GetNumberOfPinchedNodes() counts these nodes; the output has one copy).
  *
  * Points are in physical coordinates (origin, spacing and direction of the input).
  * An empty image, an image with no label voxel, a listed label with no voxel, or a

@@ -41,6 +41,11 @@ if bash scripts/prepare-data.sh "$out/data"; then
   log "head CT: scale-space refinement of the unrelaxed SurfaceNets bone surface (about 1.5 minutes)"
   "$me" refine "$out/data/cranium.nhdr" "$out/cranium-refined.vtk" --initial surfacenets --iso 300 \
     --max-deviation 2 --target-quality 0.9 --csv "$out/refine-cranium.csv" --report > "$out/refine-cranium.txt"
+  log "head CT as labels: soft tissue and bone in one pass, the faces between them shared"
+  "$me" extract "$out/data/cranium.nhdr" "$out/cranium-labels.vtk" --label-thresholds -300,300 \
+    --combined "$out/cranium-labels-combined.vtp" > "$out/cranium-labels.txt"
+  "$me" report "$out/cranium-labels" "$out/cranium-labels-1.vtk" "$out/cranium-labels-2.vtk" \
+    --title "Head CT as labels: soft tissue [-300, 300) HU (1) and bone >= 300 HU (2), one pass, shared faces"
   if [ -f "$out/data/headsq.nhdr" ] && [ -x "$compare" ]; then
     log "small head CT (../shared/data/ct_headsq): bone at 1150 (HU + 1024)"
     "$compare" "$out/data/headsq.nhdr" --iso 1150 --methods all --repeat 1 --markdown "$out/comparison-headsq.md" \

@@ -23,6 +23,7 @@
 #include "itkMeshExtractionValidityGuard.h"
 #include "itkImage.h"
 #include "itkMacro.h"
+#include "itkMultiThreaderBase.h"
 
 #include <algorithm>
 #include <limits>
@@ -584,10 +585,38 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
   MultiLabelSurfaceNet  result;
   result.numberOfLabels = numberOfLabels;
   result.labelVertexStart.assign(numberOfLabels + 2, 0);
+  // Many labels: one label per work unit, each net on one; a few: one after another,
+  // each on all of them.
+  const unsigned int workUnits = parameters.numberOfWorkUnits > 0 ? parameters.numberOfWorkUnits
+                                                                   : ThreadNumberOfWorkUnits() > 0
+                                                                       ? ThreadNumberOfWorkUnits()
+                                                                       : MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
+  if (numberOfLabels >= 4 * workUnits)
+  {
+    MultiLabelSurfaceNetParameters one = parameters;
+    one.numberOfWorkUnits = 1;
+    ParallelForBlocks(
+      numberOfLabels,
+      1,
+      [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          const auto k = static_cast<std::uint32_t>(i + 1);
+          BuildLabelNet(lookup, k, boxes[k], one, nets[k]);
+        }
+      },
+      parameters.numberOfWorkUnits);
+  }
+  else
+  {
+    for (std::uint32_t k = 1; k <= numberOfLabels; ++k)
+    {
+      BuildLabelNet(lookup, k, boxes[k], parameters, nets[k]);
+    }
+  }
   std::size_t numberOfVertices = 0;
   for (std::uint32_t k = 1; k <= numberOfLabels; ++k)
   {
-    BuildLabelNet(lookup, k, boxes[k], parameters, nets[k]);
     nets[k].firstVertex = static_cast<std::uint32_t>(numberOfVertices);
     result.labelVertexStart[k] = nets[k].firstVertex;
     numberOfVertices += nets[k].net.positions.size();
@@ -821,18 +850,42 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
   // junction of three or more labels averages only its neighbours on the same junction
   // line; one that has not two of them (a corner where junction lines meet or end)
   // stays.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> links;
-  links.reserve(8 * faces.quads.size());
+  // The links, per node: the quads' edges both ways, counted, placed, then each node's
+  // few sorted and made unique.
+  std::vector<std::uint32_t> linkStart(numberOfNodes + 1, 0);
   for (const auto & q : faces.quads)
   {
-    for (unsigned int i = 0; i < 4; ++i)
+    for (const std::uint32_t n : q)
     {
-      links.emplace_back(q[i], q[(i + 1) % 4]);
-      links.emplace_back(q[(i + 1) % 4], q[i]);
+      linkStart[n + 1] += 2;
     }
   }
-  std::sort(links.begin(), links.end());
-  links.erase(std::unique(links.begin(), links.end()), links.end());
+  std::partial_sum(linkStart.begin(), linkStart.end(), linkStart.begin());
+  std::vector<std::uint32_t> links(linkStart.back());
+  {
+    std::vector<std::uint32_t> fill(linkStart.begin(), linkStart.end() - 1);
+    for (const auto & q : faces.quads)
+    {
+      for (unsigned int i = 0; i < 4; ++i)
+      {
+        links[fill[q[i]]++] = q[(i + 1) % 4];
+        links[fill[q[i]]++] = q[(i + 3) % 4];
+      }
+    }
+  }
+  std::vector<std::uint32_t> linkEnd(numberOfNodes);
+  ParallelForBlocks(
+    numberOfNodes,
+    8192,
+    [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t n = begin; n < end; ++n)
+      {
+        const auto first = links.begin() + linkStart[n];
+        std::sort(first, links.begin() + linkStart[n + 1]);
+        linkEnd[n] = static_cast<std::uint32_t>(std::unique(first, links.begin() + linkStart[n + 1]) - links.begin());
+      }
+    },
+    parameters.numberOfWorkUnits);
   faces.neighborStart.assign(numberOfNodes + 1, 0);
   std::vector<std::uint8_t> junction(numberOfNodes, 0);
   for (std::size_t n = 0; n < numberOfNodes; ++n)
@@ -841,13 +894,12 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
     result.numberOfJunctionNodes += junction[n];
   }
   {
-    std::size_t l = 0;
     for (std::size_t n = 0; n < numberOfNodes; ++n)
     {
       const std::size_t begin = faces.neighbors.size();
-      for (; l < links.size() && links[l].first == n; ++l)
+      for (std::size_t l = linkStart[n]; l < linkEnd[n]; ++l)
       {
-        const std::uint32_t m = links[l].second;
+        const std::uint32_t m = links[l];
         if (!junction[n] || (junction[m] && sameLabels(n, m)))
         {
           faces.neighbors.push_back(m);
