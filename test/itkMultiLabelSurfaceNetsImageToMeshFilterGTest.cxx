@@ -487,6 +487,29 @@ TEST(MultiLabelSurfaceNets, TouchingObjectsShareTheirBoundary)
   }
 }
 
+// A single slice (one voxel thick) of two labels side by side, and a label touching the
+// image's border: closed slabs that share their faces.
+TEST(MultiLabelSurfaceNets, OneSliceAndTheImageBorder)
+{
+  const std::array<std::int64_t, 3> n{ { 6, 5, 1 } };
+  std::vector<std::uint32_t>        labels(30, 0);
+  for (std::int64_t y = 0; y < 5; ++y)
+  {
+    for (std::int64_t x = 0; x < 6; ++x)
+    {
+      labels[y * 6 + x] = x < 3 ? 1 : (y > 0 ? 2 : 0);
+    }
+  }
+  const auto net = ME::detail::MakeMultiLabelSurfaceNet(labels.data(), n, 2, IndexSpaceParameters());
+  ExpectValidMultiLabelNet(net, "one slice", &labels, &n);
+  std::size_t shared = 0;
+  for (const auto & pair : net.faceLabels)
+  {
+    shared += pair[0] == 1 && pair[1] == 2 ? 1 : 0;
+  }
+  EXPECT_EQ(shared, 8u); // four voxel faces between the labels, two triangles each
+}
+
 TEST(MultiLabelSurfaceNets, BadInputIsRefusedWithAMessage)
 {
   auto filter = FilterType::New();
