@@ -16,6 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionIndexedTriangleMesh.h"
+#include "itkMeshExtractionDisjointSets.h"
 
 #include <algorithm>
 #include <limits>
@@ -27,52 +28,7 @@ namespace MeshExtraction
 {
 namespace
 {
-class UnionFind
-{
-public:
-  explicit UnionFind(std::size_t n)
-      : m_Parent(n)
-  {
-    std::iota(m_Parent.begin(), m_Parent.end(), 0u);
-  }
-  std::uint32_t
-  Find(std::uint32_t x)
-  {
-    std::uint32_t root = x;
-    while (m_Parent[root] != root)
-    {
-      root = m_Parent[root];
-    }
-    while (m_Parent[x] != root)
-    {
-      const std::uint32_t next = m_Parent[x];
-      m_Parent[x] = root;
-      x = next;
-    }
-    return root;
-  }
-  void
-  Join(std::uint32_t a, std::uint32_t b)
-  {
-    a = Find(a);
-    b = Find(b);
-    if (a != b)
-    {
-      // Keep the smaller index as root: labels then depend on the input only.
-      if (a < b)
-      {
-        m_Parent[b] = a;
-      }
-      else
-      {
-        m_Parent[a] = b;
-      }
-    }
-  }
-
-private:
-  std::vector<std::uint32_t> m_Parent;
-};
+using detail::DisjointSets;
 
 constexpr std::uint32_t NoEdge = std::numeric_limits<std::uint32_t>::max();
 
@@ -205,7 +161,7 @@ BuildVertexRows(const IndexedTriangleMesh & mesh, MeshTopology & topo)
 void
 LabelComponents(std::size_t numberOfTriangles, MeshTopology & topo)
 {
-  UnionFind triangleSets(numberOfTriangles);
+  DisjointSets triangleSets(numberOfTriangles);
   for (const auto & e : topo.edges)
   {
     for (std::uint32_t k = 1; k < e.numberOfIncidences; ++k)
@@ -312,7 +268,7 @@ CountBoundaryLoops(std::size_t numberOfPoints, MeshTopology & topo)
   {
     return;
   }
-  UnionFind vertexSets(numberOfPoints);
+  DisjointSets vertexSets(numberOfPoints);
   for (const auto & e : topo.edges)
   {
     if (e.numberOfIncidences == 1)

@@ -16,6 +16,7 @@
  *
  *=========================================================================*/
 #include "itkMeshExtractionMultiLabelSurfaceNet.h"
+#include "itkMeshExtractionDisjointSets.h"
 #include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSelfIntersections.h"
 #include "itkMeshExtractionSurfaceNetsClassification.h"
@@ -139,39 +140,6 @@ CellOfKey(std::uint64_t key)
            static_cast<std::int64_t>((key >> 21) & mask) - 1,
            static_cast<std::int64_t>(key >> 42) - 1 };
 }
-
-class DisjointSets
-{
-public:
-  explicit DisjointSets(std::size_t n)
-    : m_Parent(n)
-  {
-    std::iota(m_Parent.begin(), m_Parent.end(), 0u);
-  }
-  std::uint32_t
-  Find(std::uint32_t x)
-  {
-    while (m_Parent[x] != x)
-    {
-      m_Parent[x] = m_Parent[m_Parent[x]];
-      x = m_Parent[x];
-    }
-    return x;
-  }
-  void
-  Join(std::uint32_t a, std::uint32_t b)
-  {
-    a = this->Find(a);
-    b = this->Find(b);
-    if (a != b)
-    {
-      m_Parent[std::max(a, b)] = std::min(a, b);
-    }
-  }
-
-private:
-  std::vector<std::uint32_t> m_Parent;
-};
 
 /** The label of voxel (x, y, z): 0 outside the image. */
 struct LabelLookup
@@ -981,8 +949,7 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
     return faces.positions[tri[0]] == start[tri[0]] && faces.positions[tri[1]] == start[tri[1]] &&
            faces.positions[tri[2]] == start[tri[2]];
   };
-  for (unsigned int round = 0;; ++round)
-  {
+  auto makeFaces = [&]() {
     ToPhysical(faces.positions.data(),
                numberOfNodes,
                parameters.origin,
@@ -990,6 +957,10 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
                parameters.roundToFloat,
                physical.data());
     MakeSurfaceNetFaces(faces, parameters.indexToPhysical, parameters.split, physical.data(), polygons, polygonSize);
+  };
+  for (unsigned int round = 0;; ++round)
+  {
+    makeFaces();
     mesh.points = physical;
     mesh.triangles.resize(polygons.size());
     for (std::size_t t = 0; t < polygons.size(); ++t)
@@ -1022,13 +993,7 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
     {
       faces.positions = start;
       std::fill(movedBack.begin(), movedBack.end(), 1);
-      ToPhysical(faces.positions.data(),
-                 numberOfNodes,
-                 parameters.origin,
-                 parameters.indexToPhysical,
-                 parameters.roundToFloat,
-                 physical.data());
-      MakeSurfaceNetFaces(faces, parameters.indexToPhysical, parameters.split, physical.data(), polygons, polygonSize);
+      makeFaces();
       break;
     }
     std::vector<std::uint8_t> moved(numberOfNodes, 0);
