@@ -59,6 +59,9 @@ struct MeshExtraction_EXPORT MultiLabelSurfaceNet
   std::vector<std::array<std::array<std::uint32_t, 3>, 2>> sideVertices;
   std::vector<std::uint32_t> sideVertexNode;   ///< the node of every label-surface vertex
   std::vector<std::uint32_t> labelVertexStart; ///< label k's vertices: [start[k], start[k + 1])
+  /** Label k's faces, increasing: labelFaces[labelFaceStart[k] .. labelFaceStart[k + 1]). */
+  std::vector<std::uint32_t> labelFaceStart;
+  std::vector<std::uint32_t> labelFaces;
   /** The label-surface vertices of pinched nodes, sorted, and their own points: moved a
    * little from the node toward their sheet, so that the label does not touch itself. */
   std::vector<std::pair<std::uint32_t, Vec3>> pinchedVertexPoints;

@@ -65,13 +65,10 @@ MultiLabelSurfaceNet::LabelSurface(std::uint32_t                  k,
   {
     vertexNodes->clear();
   }
-  for (std::size_t f = 0; f < triangles.size(); ++f)
+  for (std::size_t at = labelFaceStart[k]; at < labelFaceStart[k + 1]; ++at)
   {
-    const unsigned int side = faceLabels[f][0] == k ? 0u : (faceLabels[f][1] == k ? 1u : 2u);
-    if (side == 2)
-    {
-      continue;
-    }
+    const std::uint32_t f = labelFaces[at];
+    const unsigned int  side = faceLabels[f][0] == k ? 0u : 1u;
     TriangleIndices t;
     for (unsigned int i = 0; i < 3; ++i)
     {
@@ -1047,6 +1044,24 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
       result.sideVertices[t][1][i] = quadSides[q][1][corner];
     }
     result.faceLabels[t] = quadLabels[q];
+  }
+  result.labelFaceStart.assign(numberOfLabels + 2, 0);
+  for (const auto & pair : result.faceLabels)
+  {
+    ++result.labelFaceStart[pair[0] + 1];
+    ++result.labelFaceStart[pair[1] + 1];
+  }
+  std::partial_sum(result.labelFaceStart.begin(), result.labelFaceStart.end(), result.labelFaceStart.begin());
+  result.labelFaces.resize(result.labelFaceStart.back());
+  {
+    std::vector<std::uint32_t> fill(result.labelFaceStart.begin(), result.labelFaceStart.end() - 1);
+    for (std::size_t f = 0; f < result.faceLabels.size(); ++f)
+    {
+      for (const std::uint32_t label : result.faceLabels[f])
+      {
+        result.labelFaces[fill[label]++] = static_cast<std::uint32_t>(f);
+      }
+    }
   }
   return result;
 }
