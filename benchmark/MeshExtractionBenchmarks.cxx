@@ -161,8 +161,8 @@ VoronoiLabels(unsigned int n)
   const double c = 0.5 * (n - 1.0);
   for (itk::ImageRegionIteratorWithIndex<LabelMapType> it(image, image->GetBufferedRegion()); !it.IsAtEnd(); ++it)
   {
-    const auto & i = it.GetIndex();
-    const double dx = i[0] - c, dy = i[1] - c, dz = i[2] - c;
+    const auto &   i = it.GetIndex();
+    const double   dx = i[0] - c, dy = i[1] - c, dz = i[2] - c;
     unsigned short label = 0;
     if (dx * dx + dy * dy + dz * dz <= 0.16 * n * n)
     {

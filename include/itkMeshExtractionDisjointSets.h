@@ -38,7 +38,7 @@ class DisjointSets
 {
 public:
   explicit DisjointSets(std::size_t n)
-    : m_Parent(n)
+      : m_Parent(n)
   {
     std::iota(m_Parent.begin(), m_Parent.end(), 0u);
   }

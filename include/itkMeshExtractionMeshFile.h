@@ -88,14 +88,14 @@ struct MeshExtraction_EXPORT PolygonMesh
   std::vector<std::uint32_t> polygonIndices;
   /** Vertex and line cells of the file, which are not part of a surface. */
   std::size_t numberOfIgnoredCells{ 0 };
-  /** Integer arrays of values per polygon (e.g. the two labels of each face of a
+  /** Unsigned integer arrays of values per polygon (e.g. the two labels of each face of a
    * multi-label surface), written by the VTK writers (.vtk as a FIELD of CELL_DATA,
    * .vtp as CellData); the other formats and the readers leave them out. */
   struct CellArray
   {
-    std::string               name;
-    unsigned int              components{ 1 };
-    std::vector<std::int32_t> values; ///< components x number of polygons
+    std::string                name;
+    unsigned int               components{ 1 };
+    std::vector<std::uint32_t> values; ///< components x number of polygons
   };
   std::vector<CellArray> cellArrays;
 

@@ -57,7 +57,7 @@ struct MeshExtraction_EXPORT MultiLabelSurfaceNet
   /** Per corner of each face, the vertex of the lower (side 0) and of the higher label's
    * own surface (LabelSurface numbering before compaction; none for the background). */
   std::vector<std::array<std::array<std::uint32_t, 3>, 2>> sideVertices;
-  std::vector<std::uint32_t> sideVertexNode;   ///< the node of every label-surface vertex
+  std::vector<std::uint32_t>                               sideVertexNode; ///< the node of every label-surface vertex
   std::vector<std::uint32_t> labelVertexStart; ///< label k's vertices: [start[k], start[k + 1])
   /** Label k's faces, increasing: labelFaces[labelFaceStart[k] .. labelFaceStart[k + 1]). */
   std::vector<std::uint32_t> labelFaceStart;
@@ -65,7 +65,7 @@ struct MeshExtraction_EXPORT MultiLabelSurfaceNet
   /** The label-surface vertices of pinched nodes, sorted, and their own points: moved a
    * little from the node toward their sheet, so that the label does not touch itself. */
   std::vector<std::pair<std::uint32_t, Vec3>> pinchedVertexPoints;
-  std::uint32_t              numberOfLabels{ 0 };
+  std::uint32_t                               numberOfLabels{ 0 };
 
   // What the pass did.
   std::size_t  numberOfJunctionNodes{ 0 }; ///< nodes on voxel edges of three or more labels

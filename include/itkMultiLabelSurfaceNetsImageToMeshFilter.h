@@ -176,14 +176,14 @@ private:
   double            m_CellMargin{ 0.01 };
   TriangulationEnum m_Triangulation{ TriangulationEnum::ShortestDiagonal };
 
-  LabelListType                         m_ExtractedLabels;
-  std::vector<FaceLabelsType>           m_FaceLabels;
+  LabelListType                        m_ExtractedLabels;
+  std::vector<FaceLabelsType>          m_FaceLabels;
   MeshExtraction::MultiLabelSurfaceNet m_Net;
-  SizeValueType                         m_NumberOfJunctionNodes{ 0 };
-  SizeValueType                         m_NumberOfFixedNodes{ 0 };
-  SizeValueType                         m_NumberOfPinchedNodes{ 0 };
-  SizeValueType                         m_NumberOfNodesMovedBack{ 0 };
-  unsigned int                          m_NumberOfIterations{ 0 };
+  SizeValueType                        m_NumberOfJunctionNodes{ 0 };
+  SizeValueType                        m_NumberOfFixedNodes{ 0 };
+  SizeValueType                        m_NumberOfPinchedNodes{ 0 };
+  SizeValueType                        m_NumberOfNodesMovedBack{ 0 };
+  unsigned int                         m_NumberOfIterations{ 0 };
 };
 } // namespace itk
 

@@ -172,8 +172,8 @@ MultiLabelSurfaceNetsImageToMeshFilter<TLabelImage, TOutputMesh>::GenerateData()
   const std::array<std::int64_t, 3> size{ { static_cast<std::int64_t>(region.GetSize(0)),
                                             static_cast<std::int64_t>(region.GetSize(1)),
                                             static_cast<std::int64_t>(region.GetSize(2)) } };
-  m_Net = ME::detail::MakeMultiLabelSurfaceNet(
-    indices.data(), size, static_cast<std::uint32_t>(m_ExtractedLabels.size()), p);
+  m_Net =
+    ME::detail::MakeMultiLabelSurfaceNet(indices.data(), size, static_cast<std::uint32_t>(m_ExtractedLabels.size()), p);
   this->UpdateProgress(0.9f);
 
   m_NumberOfJunctionNodes = m_Net.numberOfJunctionNodes;

@@ -43,7 +43,7 @@ constexpr std::uint32_t NoVertex = std::numeric_limits<std::uint32_t>::max();
  * two sheets apart in the written coordinates and little enough that the faces at that
  * node stay where the neighbouring label's copies are, within that distance. */
 constexpr double PinchSeparation = 0.02;
-}
+} // namespace
 
 void
 MultiLabelSurfaceNet::LabelSurface(std::uint32_t                  k,
@@ -69,7 +69,7 @@ MultiLabelSurfaceNet::LabelSurface(std::uint32_t                  k,
   {
     const std::uint32_t f = labelFaces[at];
     const unsigned int  side = faceLabels[f][0] == k ? 0u : 1u;
-    TriangleIndices t;
+    TriangleIndices     t;
     for (unsigned int i = 0; i < 3; ++i)
     {
       const std::uint32_t v = sideVertices[f][side][i] - first;
@@ -159,16 +159,15 @@ struct LabelLookup
 std::vector<std::array<std::int64_t, 6>>
 LabelBoxes(const LabelLookup & lookup, std::uint32_t numberOfLabels)
 {
-  std::vector<std::array<std::int64_t, 6>> boxes(
-    numberOfLabels + 1,
-    { { std::numeric_limits<std::int64_t>::max(),
-        std::numeric_limits<std::int64_t>::max(),
-        std::numeric_limits<std::int64_t>::max(),
-        -1,
-        -1,
-        -1 } });
-  const auto & size = lookup.size;
-  std::size_t  i = 0;
+  std::vector<std::array<std::int64_t, 6>> boxes(numberOfLabels + 1,
+                                                 { { std::numeric_limits<std::int64_t>::max(),
+                                                     std::numeric_limits<std::int64_t>::max(),
+                                                     std::numeric_limits<std::int64_t>::max(),
+                                                     -1,
+                                                     -1,
+                                                     -1 } });
+  const auto &                             size = lookup.size;
+  std::size_t                              i = 0;
   for (std::int64_t z = 0; z < size[2]; ++z)
   {
     for (std::int64_t y = 0; y < size[1]; ++y)
@@ -182,9 +181,9 @@ LabelBoxes(const LabelLookup & lookup, std::uint32_t numberOfLabels)
         }
         if (label > numberOfLabels)
         {
-          itkGenericExceptionMacro("MultiLabelSurfaceNet: voxel (" << x << ", " << y << ", " << z << ") has label index "
-                                                                   << label << ", above the " << numberOfLabels
-                                                                   << " labels.");
+          itkGenericExceptionMacro("MultiLabelSurfaceNet: voxel (" << x << ", " << y << ", " << z
+                                                                   << ") has label index " << label << ", above the "
+                                                                   << numberOfLabels << " labels.");
         }
         auto &             b = boxes[label];
         const std::int64_t at[3] = { x, y, z };
@@ -327,9 +326,9 @@ public:
                   const std::vector<std::array<std::array<std::uint32_t, 4>, 2>> & quadSides,
                   const std::vector<std::uint64_t> &                               nodeCell,
                   std::uint32_t                                                    numberOfLabels)
-    : m_Quads(quads)
-    , m_QuadSides(quadSides)
-    , m_Candidates(numberOfLabels + 1)
+      : m_Quads(quads)
+      , m_QuadSides(quadSides)
+      , m_Candidates(numberOfLabels + 1)
   {
     const SurfaceNetsCellTable &            table = SurfaceNetsCellTable::Get();
     std::vector<std::vector<std::uint64_t>> nearCells(numberOfLabels + 1);
@@ -438,11 +437,11 @@ public:
       {
         continue;
       }
-      IndexedTriangleMesh                     local;
-      std::vector<std::uint32_t>              localNode;
-      std::vector<TriangleIndices>            nodeTriangles;
-      std::vector<std::uint32_t>              queries;
-      std::map<std::uint32_t, std::uint32_t>  localOf;
+      IndexedTriangleMesh                    local;
+      std::vector<std::uint32_t>             localNode;
+      std::vector<TriangleIndices>           nodeTriangles;
+      std::vector<std::uint32_t>             queries;
+      std::map<std::uint32_t, std::uint32_t> localOf;
       for (const auto & candidate : candidates)
       {
         const auto & quad = m_Quads[candidate.first];
@@ -515,10 +514,10 @@ private:
     return point;
   }
 
-  const LargeBlockVector<std::array<std::uint32_t, 4>> &                 m_Quads;
-  const std::vector<std::array<std::array<std::uint32_t, 4>, 2>> &       m_QuadSides;
-  std::vector<Entry>                                                     m_Entries;
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>>       m_Candidates; ///< per label: (quad, side)
+  const LargeBlockVector<std::array<std::uint32_t, 4>> &           m_Quads;
+  const std::vector<std::array<std::array<std::uint32_t, 4>, 2>> & m_QuadSides;
+  std::vector<Entry>                                               m_Entries;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> m_Candidates; ///< per label: (quad, side)
 };
 
 } // namespace
@@ -553,9 +552,8 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
   // Many labels: one label per work unit, each net on one; a few: one after another,
   // each on all of them.
   const unsigned int workUnits = parameters.numberOfWorkUnits > 0 ? parameters.numberOfWorkUnits
-                                                                   : ThreadNumberOfWorkUnits() > 0
-                                                                       ? ThreadNumberOfWorkUnits()
-                                                                       : MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
+                                 : ThreadNumberOfWorkUnits() > 0  ? ThreadNumberOfWorkUnits()
+                                                                 : MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
   if (numberOfLabels >= 4 * workUnits)
   {
     MultiLabelSurfaceNetParameters one = parameters;
@@ -730,7 +728,7 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
 
   // 5. Every face once, from the net of its lower label (the background's from the
   // label's), pointing out of the lower label.
-  SurfaceNet faces; // the nodes' quads, for the relaxation and MakeSurfaceNetFaces
+  SurfaceNet                                faces; // the nodes' quads, for the relaxation and MakeSurfaceNetFaces
   std::vector<std::array<std::uint32_t, 2>> quadLabels;
   std::vector<std::array<std::array<std::uint32_t, 4>, 2>> quadSides;
   for (std::uint32_t k = 1; k <= numberOfLabels; ++k)
@@ -748,8 +746,8 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
       const std::int64_t  z = c.z + ln.offset[2];
       // The voxel edge's two ends: corner 7 - (1 << axis) (low) and corner 7 (high).
       const std::int64_t  lowCorner[3] = { x + (axis != 0), y + (axis != 1), z + (axis != 2) };
-      const std::uint32_t other = negative ? lookup(lowCorner[0], lowCorner[1], lowCorner[2])
-                                           : lookup(x + 1, y + 1, z + 1);
+      const std::uint32_t other =
+        negative ? lookup(lowCorner[0], lowCorner[1], lowCorner[2]) : lookup(x + 1, y + 1, z + 1);
       if (other == k)
       {
         itkGenericExceptionMacro("MultiLabelSurfaceNet: internal error: a face inside label " << k << '.');
@@ -924,9 +922,9 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
   relaxation.indexToPhysical = parameters.indexToPhysical;
   relaxation.numberOfWorkUnits = parameters.numberOfWorkUnits;
   const SurfaceNetsSampler<MaskImageType> * noSampler = nullptr;
-  result.iterations =
-    RelaxSurfaceNet(faces, noSampler, [](const Vec3 &, std::uint32_t) { return MakeVec3(0, 0, 0); }, relaxation)
-      .iterations;
+  result.iterations = RelaxSurfaceNet(
+                        faces, noSampler, [](const Vec3 &, std::uint32_t) { return MakeVec3(0, 0, 0); }, relaxation)
+                        .iterations;
 
   // 8. Where faces cross (of one label or of two) or one is degenerate, the nodes of
   // those faces move back toward the start: halved a few times, then reset. The start
@@ -936,13 +934,13 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
   std::vector<Vec3>                              physical(numberOfNodes);
   LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
   unsigned int                                   polygonSize = 3;
-  const PinchedVertices                          pinches(records, pinched, nodeOfVertex, faces.quads, quadLabels,
-                                                         quadSides, nodeCell, numberOfLabels);
-  IndexedTriangleMesh                            mesh;
-  std::vector<std::uint8_t>                      halvings(numberOfNodes, 0);
-  std::vector<std::uint8_t>                      movedBack(numberOfNodes, 0);
-  std::vector<std::uint32_t>                     queries;
-  auto                                           atStart = [&](const TriangleIndices & tri) {
+  const PinchedVertices                          pinches(
+    records, pinched, nodeOfVertex, faces.quads, quadLabels, quadSides, nodeCell, numberOfLabels);
+  IndexedTriangleMesh        mesh;
+  std::vector<std::uint8_t>  halvings(numberOfNodes, 0);
+  std::vector<std::uint8_t>  movedBack(numberOfNodes, 0);
+  std::vector<std::uint32_t> queries;
+  auto                       atStart = [&](const TriangleIndices & tri) {
     return faces.positions[tri[0]] == start[tri[0]] && faces.positions[tri[1]] == start[tri[1]] &&
            faces.positions[tri[2]] == start[tri[2]];
   };

@@ -546,10 +546,10 @@ WriteVTKLegacyFile(const std::string & fileName, const PolygonMesh & mesh, const
     out << "CELL_DATA " << mesh.NumberOfPolygons() << "\nFIELD FieldData " << mesh.cellArrays.size() << '\n';
     for (const auto & array : mesh.cellArrays)
     {
-      out << array.name << ' ' << array.components << ' ' << mesh.NumberOfPolygons() << " int\n";
+      out << array.name << ' ' << array.components << ' ' << mesh.NumberOfPolygons() << " unsigned_int\n";
       if (binary)
       {
-        WriteBigEndian<std::int32_t>(out, array.values);
+        WriteBigEndian<std::uint32_t>(out, array.values);
         continue;
       }
       for (std::size_t i = 0; i < array.values.size(); ++i)

@@ -712,7 +712,8 @@ WriteVTKXMLPolyDataFile(const std::string & fileName, const PolygonMesh & mesh, 
     out << "      <CellData>\n";
     for (const auto & array : mesh.cellArrays)
     {
-      WriteArray<std::int32_t>(out, "Int32", array.name.c_str(), static_cast<int>(array.components), array.values, ascii);
+      WriteArray<std::uint32_t>(
+        out, "UInt32", array.name.c_str(), static_cast<int>(array.components), array.values, ascii);
     }
     out << "      </CellData>\n";
   }

@@ -337,8 +337,8 @@ TEST(MeshFileVTK, VTKReadsTheCellArraysTheModuleWrites)
   labels.components = 2;
   for (std::size_t f = 0; f < mesh.NumberOfPolygons(); ++f)
   {
-    labels.values.push_back(static_cast<std::int32_t>(f % 3));
-    labels.values.push_back(static_cast<std::int32_t>(1000 + f));
+    labels.values.push_back(static_cast<std::uint32_t>(f % 3));
+    labels.values.push_back(static_cast<std::uint32_t>(4000000000u + f));
   }
   mesh.cellArrays.push_back(labels);
   auto expectArray = [&](vtkPolyData * read) {

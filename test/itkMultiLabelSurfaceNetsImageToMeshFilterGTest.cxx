@@ -101,7 +101,7 @@ FaceKey
 KeyOf(const std::vector<ME::Vec3> & points, const ME::TriangleIndices & t)
 {
   std::array<ME::Vec3, 3> c = { points[t[0]], points[t[1]], points[t[2]] };
-  auto less = [](const ME::Vec3 & a, const ME::Vec3 & b) {
+  auto                    less = [](const ME::Vec3 & a, const ME::Vec3 & b) {
     return std::lexicographical_compare(&a[0], &a[0] + 3, &b[0], &b[0] + 3);
   };
   while (less(c[1], c[0]) || less(c[2], c[0]))
@@ -215,7 +215,8 @@ ExpectValidMultiLabelNet(const ME::MultiLabelSurfaceNet &    net,
 LabelImage::Pointer
 ToImage(const std::vector<std::uint32_t> & labels, const std::array<std::int64_t, 3> & n)
 {
-  auto image = MakeImage<LabelImage>(static_cast<unsigned int>(n[0]), static_cast<unsigned int>(n[1]), static_cast<unsigned int>(n[2]));
+  auto image = MakeImage<LabelImage>(
+    static_cast<unsigned int>(n[0]), static_cast<unsigned int>(n[1]), static_cast<unsigned int>(n[2]));
   std::copy(labels.begin(), labels.end(), image->GetBufferPointer());
   return image;
 }
@@ -358,9 +359,9 @@ TEST(MultiLabelSurfaceNets, RandomLabelVolumesGiveValidSharedSurfaces)
 // One label alone: the same surface as SurfaceNetsImageToMeshFilter's SNA on its mask.
 TEST(MultiLabelSurfaceNets, OneLabelIsTheSingleLabelSurface)
 {
-  const std::int64_t N = 24;
-  const auto         labels = BallSectors(N, 8.3, 1, 0.3);
-  const auto         image = ToImage(labels, { { N, N, N } });
+  const std::int64_t      N = 24;
+  const auto              labels = BallSectors(N, 8.3, 1, 0.3);
+  const auto              image = ToImage(labels, { { N, N, N } });
   LabelImage::SpacingType spacing;
   spacing[0] = 0.5;
   spacing[1] = 0.7;
@@ -416,8 +417,8 @@ TEST(MultiLabelSurfaceNets, TouchingObjectsShareTheirBoundary)
   const std::array<std::int64_t, 3> n{ { N, N, N } };
   for (unsigned int sectors : { 2u, 3u })
   {
-    const auto labels = BallSectors(N, 15.2, sectors, 0.25);
-    auto       image = ToImage(labels, n);
+    const auto              labels = BallSectors(N, 15.2, sectors, 0.25);
+    auto                    image = ToImage(labels, n);
     LabelImage::SpacingType spacing;
     spacing.Fill(0.8);
     image->SetSpacing(spacing);
@@ -455,7 +456,7 @@ TEST(MultiLabelSurfaceNets, TouchingObjectsShareTheirBoundary)
       calculator->Compute();
       wholeVolume = calculator->GetReport().enclosedVolume;
     }
-    double sectorVolumes = 0.0;
+    double      sectorVolumes = 0.0;
     std::size_t shared = 0;
     for (const auto & pair : filter->GetFaceLabels())
     {
@@ -476,8 +477,7 @@ TEST(MultiLabelSurfaceNets, TouchingObjectsShareTheirBoundary)
       {
         EXPECT_TRUE(r.IsValidClosedSurface()) << sectors << " sectors, label " << k;
       }
-      const double voxels =
-        static_cast<double>(std::count(labels.begin(), labels.end(), k)) * 0.8 * 0.8 * 0.8;
+      const double voxels = static_cast<double>(std::count(labels.begin(), labels.end(), k)) * 0.8 * 0.8 * 0.8;
       // SNA rounds the ball's outer surface off (as for one label: a few per cent on a
       // ball of 15 voxels); the cuts between sectors stay where the voxels meet.
       EXPECT_NEAR(r.enclosedVolume / voxels, 1.0, 0.05) << sectors << " sectors, label " << k;

@@ -201,8 +201,8 @@ PrintFilterSummary(const TFilter * filter, const ExtractSettings & s, const Stop
               << " rounds";
     if (s.sliverRemoval)
     {
-      std::cerr << ", slivers: " << filter->GetNumberOfCollapses() << " collapses, "
-                << filter->GetNumberOfSliverSwaps() << " swaps, " << filter->GetNumberOfSliverMoves() << " moves";
+      std::cerr << ", slivers: " << filter->GetNumberOfCollapses() << " collapses, " << filter->GetNumberOfSliverSwaps()
+                << " swaps, " << filter->GetNumberOfSliverMoves() << " moves";
     }
   }
   if (filter->GetMinimumComponentVolume() > 0.0)
@@ -719,8 +719,8 @@ ThresholdLabels(const std::string & path, const std::string & list)
     {
       itkGenericExceptionMacro("'" << path << "' has a NaN voxel (voxel " << i << " of the buffer)");
     }
-    out[i] = static_cast<unsigned int>(std::upper_bound(thresholds.begin(), thresholds.end(), v[i]) -
-                                       thresholds.begin());
+    out[i] =
+      static_cast<unsigned int>(std::upper_bound(thresholds.begin(), thresholds.end(), v[i]) - thresholds.begin());
   }
   return labels;
 }
@@ -776,7 +776,7 @@ RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings 
   filter->Update();
   std::cerr << "every label in one pass: " << std::fixed << std::setprecision(3) << watch.Seconds() << " s\n"
             << std::defaultfloat;
-  const auto & faceLabels = filter->GetFaceLabels();
+  const auto &                        faceLabels = filter->GetFaceLabels();
   std::map<unsigned int, std::size_t> sharedFaces;
   for (const auto & pair : faceLabels)
   {
@@ -822,15 +822,15 @@ RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings 
     pairs.components = 2;
     for (const auto & pair : faceLabels)
     {
-      pairs.values.push_back(static_cast<std::int32_t>(pair[0]));
-      pairs.values.push_back(static_cast<std::int32_t>(pair[1]));
+      pairs.values.push_back(pair[0]);
+      pairs.values.push_back(pair[1]);
     }
     combined.cellArrays.push_back(std::move(pairs));
     ME::WritePolygonMeshFile(args.Get("combined"), combined, writeSettings.options);
   }
-  std::cout << chosen.size() << " labels of " << extents.size() << " in " << input << ", in one pass: "
-            << faceLabels.size() << " faces, " << filter->GetOutput()->GetNumberOfPoints() << " nodes ("
-            << filter->GetNumberOfJunctionNodes() << " on junctions of 3 or more labels, "
+  std::cout << chosen.size() << " labels of " << extents.size() << " in " << input
+            << ", in one pass: " << faceLabels.size() << " faces, " << filter->GetOutput()->GetNumberOfPoints()
+            << " nodes (" << filter->GetNumberOfJunctionNodes() << " on junctions of 3 or more labels, "
             << filter->GetNumberOfPinchedNodes() << " where a label touches itself, "
             << filter->GetNumberOfNodesMovedBack() << " moved back), " << filter->GetNumberOfIterations()
             << " iterations\n"
