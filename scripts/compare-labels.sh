@@ -12,10 +12,13 @@ if [ ! -x "$venv/bin/python" ]; then
   "$venv/bin/pip" install --quiet -r benchmark/peers/requirements.txt
 fi
 out="${1:-results/labels}"
-# The head CT's soft tissue and bone as labels, where the Debian data is installed.
+# The head CT's soft tissue and bone as labels, where the Debian data is installed;
 ct=()
 if bash scripts/prepare-data.sh "$out/data" > /dev/null 2>&1 && [ -f "$out/data/cranium.nhdr" ]; then
   ct=(--head-ct "$out/data/cranium.nhdr")
 fi
+# The AAL atlas of mricron-data (116 labels), a real label map.
+atlas=/usr/share/mricron/templates/aal.nii.gz
+[ -f "$atlas" ] && ct+=(--atlas "$atlas")
 "$venv/bin/python" benchmark/peers/compare-labels.py --meshextraction build/examples/meshextraction \
   --benchmarks build/benchmark/MeshExtractionBenchmarks --out "$out" "${ct[@]}" "${@:2}"

@@ -253,31 +253,23 @@ def vtk_label_surfaces(output, labels, prefix):
     return paths
 
 
-def head_ct_labels(tool, benchmarks, workdir, ct, thresholds, runs):
-    """A label map of the head CT of invesalius-examples (scripts/prepare-data.sh): soft
-    tissue [-300, 300) HU = 1 and bone >= 300 HU = 2. VTK's vtkSurfaceNets3D (every label at
-    once; each label's surface taken from its output by BoundaryLabels) against the module's
-    one-pass filter; each label's surface measured by `meshextraction quality`."""
-    reader = vtk.vtkNrrdReader()
-    reader.SetFileName(ct)
-    reader.Update()
-    image = reader.GetOutput()
-    dims = image.GetDimensions()
-    values = numpy_support.vtk_to_numpy(image.GetPointData().GetScalars()).reshape(dims[::-1])
-    labels = np.digitize(values, thresholds).astype(np.uint16)
-    path = os.path.join(workdir, "head-ct-labels.mha")
-    write_mha(path, labels, image.GetSpacing(), image.GetOrigin())
+def real_label_map(tool, benchmarks, workdir, name, title, labels, spacing, origin, runs):
+    """A real label map: VTK's vtkSurfaceNets3D (every label at once; each label's surface
+    taken from its output by BoundaryLabels) against the module's one-pass filter; each
+    label's surface measured by `meshextraction quality` (the table sums over the labels)."""
+    path = os.path.join(workdir, name + "-labels.mha")
+    write_mha(path, labels, spacing, origin)
+    dims = labels.shape[::-1]
     label_image = vtk.vtkImageData()
     label_image.SetDimensions(dims)
-    label_image.SetSpacing(image.GetSpacing())
-    label_image.SetOrigin(image.GetOrigin())
-    label_image.GetPointData().SetScalars(numpy_support.numpy_to_vtk(labels.ravel(), deep=1))
+    label_image.SetSpacing(spacing)
+    label_image.SetOrigin(origin)
+    label_image.GetPointData().SetScalars(numpy_support.numpy_to_vtk(np.ascontiguousarray(labels).ravel(), deep=1))
     present = [int(v) for v in np.unique(labels) if v > 0]
-    print("\nHead CT (invesalius-examples, {}x{}x{}) as labels: soft tissue [{}, {}) HU and bone >= {} HU:\n".format(
-        *dims, thresholds[0], thresholds[1], thresholds[1]))
-    print("| method | ms 1 thread / 2 | label | triangles | q_angle | q_area | non-manifold | inconsistent edges |"
-          " crossing pairs | valid |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("\n{} ({} labels):\n".format(title, len(present)))
+    print("| method | ms 1 thread / 2 | labels valid | triangles | q_angle | q_area | non-manifold | inconsistent edges |"
+          " crossing pairs |")
+    print("|---|---|---|---|---|---|---|---|---|")
     vtk.vtkSMPTools.SetBackend("STDThread")
     times = []
     output = None
@@ -296,20 +288,33 @@ def head_ct_labels(tool, benchmarks, workdir, ct, thresholds, runs):
             best = elapsed if best is None else min(best, elapsed)
             output = f.GetOutput()
         times.append(best)
-    rows = [("vtkSurfaceNets3D (VTK {})".format(vtk.vtkVersion.GetVTKVersion()), times, r) for r in surface_quality(
-        tool, vtk_label_surfaces(output, present, os.path.join(workdir, "head-ct-vtk")), workdir)]
+    vtk_rows = surface_quality(tool, vtk_label_surfaces(output, present, os.path.join(workdir, name + "-vtk")), workdir)
     filter_times = multi_label_filter_times(benchmarks, path, 256)
-    out = os.path.join(workdir, "head-ct-module")
+    out = os.path.join(workdir, name + "-module")
     os.makedirs(out, exist_ok=True)
     subprocess.run([tool, "extract", path, os.path.join(out, "l.vtk"), "--all-labels"], check=True,
                    capture_output=True)
-    module = [os.path.join(out, "l-{}.vtk".format(label)) for label in present]
-    rows += [("module one pass", [filter_times.get(1, (float("nan"),))[0], filter_times.get(2, (float("nan"),))[0]], r)
-             for r in surface_quality(tool, module, workdir)]
-    for method, t, r in rows:
-        print("| {} | {:.0f} / {:.0f} | {} | {} | {:.3f} | {:.3f} | {} | {} | {} | {} |".format(
-            method, t[0], t[1], r["mesh"], r["triangles"], r["q_angle"], r["q_area"], r["non_manifold"],
-            r["inconsistent"], r["crossing"], "yes" if r["valid"] else "no"))
+    module_rows = surface_quality(tool, [os.path.join(out, "l-{}.vtk".format(label)) for label in present], workdir)
+    module_times = [filter_times.get(t, (float("nan"),))[0] for t in (1, 2)]
+    for method, t, rows in (("vtkSurfaceNets3D (VTK {})".format(vtk.vtkVersion.GetVTKVersion()), times, vtk_rows),
+                            ("module one pass", module_times, module_rows)):
+        triangles = sum(r["triangles"] for r in rows)
+        print("| {} | {:.0f} / {:.0f} | {} of {} | {} | {:.3f} | {:.3f} | {} | {} | {} |".format(
+            method, t[0], t[1], sum(r["valid"] for r in rows), len(rows), triangles,
+            sum(r["q_angle"] * r["triangles"] for r in rows) / triangles,
+            sum(r["q_area"] * r["triangles"] for r in rows) / triangles,
+            sum(r["non_manifold"] for r in rows), sum(r["inconsistent"] for r in rows),
+            sum(r["crossing"] for r in rows)))
+
+
+def read_image(path):
+    """An image VTK reads (NRRD, NIfTI) as a NumPy array (z, y, x), its spacing and origin."""
+    reader = vtk.vtkNIFTIImageReader() if path.endswith((".nii", ".nii.gz")) else vtk.vtkNrrdReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    values = numpy_support.vtk_to_numpy(image.GetPointData().GetScalars()).reshape(image.GetDimensions()[::-1])
+    return values, image.GetSpacing(), image.GetOrigin()
 
 
 def main():
@@ -322,6 +327,8 @@ def main():
     parser.add_argument("--many-labels", type=int, default=256, help="size of the 100-label volume (0: none)")
     parser.add_argument("--head-ct", default=None,
                         help="the head CT (cranium.nhdr of scripts/prepare-data.sh) for the soft tissue and bone table")
+    parser.add_argument("--atlas", default=None,
+                        help="a label atlas (e.g. mricron-data's aal.nii.gz) for a real many-label table")
     parser.add_argument("--only-many-labels", action="store_true", help="skip the sphere table")
     args = parser.parse_args()
     workdir = args.out or tempfile.mkdtemp(prefix="meshextraction-labels-")
@@ -364,7 +371,14 @@ def main():
     if args.many_labels > 0:
         many_labels(tool, args.benchmarks, workdir, args.many_labels, 100, args.runs)
     if args.head_ct:
-        head_ct_labels(tool, args.benchmarks, workdir, args.head_ct, (-300, 300), args.runs)
+        values, spacing, origin = read_image(args.head_ct)
+        real_label_map(tool, args.benchmarks, workdir, "head-ct",
+                       "Head CT (invesalius-examples) as labels: soft tissue [-300, 300) HU = 1, bone >= 300 HU = 2",
+                       np.digitize(values, (-300, 300)).astype(np.uint16), spacing, origin, args.runs)
+    if args.atlas:
+        values, spacing, origin = read_image(args.atlas)
+        real_label_map(tool, args.benchmarks, workdir, "atlas", "Label atlas " + os.path.basename(args.atlas),
+                       values.astype(np.uint16), spacing, origin, args.runs)
     print(f"\nmeshes and results.json in {workdir}", file=sys.stderr)
 
 
