@@ -15,14 +15,17 @@
  *  limitations under the License.
  *
  *=========================================================================*/
-// libFuzzer harness for the module's mesh-file readers: the first byte chooses the
 // libFuzzer harness for SurfaceNets on small volumes: the first bytes choose the grid
 // (1 to 7 voxels per axis), the relaxation, the triangulation and the high-quality mode;
 // the rest are the voxels (signed bytes, the object where they are >= 0). The filter may
 // refuse an input (a constant image) with an itk::ExceptionObject; every mesh it emits
 // must be a valid closed surface (closed, 2-manifold, outward, no degenerate, inverted or
-// self-intersecting triangle), or the harness aborts with the report.
+// self-intersecting triangle), or the harness aborts with the report. With bit 5 of the
+// settings the voxels are labels instead (byte modulo 2 to 5: up to 4 labels and the
+// background) for MultiLabelSurfaceNetsImageToMeshFilter, and every label's surface must
+// be valid.
 
+#include "itkMultiLabelSurfaceNetsImageToMeshFilter.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 #include "itkTriangleMeshQualityCalculator.h"
 
@@ -59,6 +62,48 @@ LLVMFuzzerTestOneInput(const std::uint8_t * data, std::size_t size)
     // The bytes after the settings, repeated when there are fewer than voxels.
     const std::size_t available = size - 4;
     buffer[i] = available > 0 ? static_cast<float>(static_cast<std::int8_t>(data[4 + i % available])) : 0.0f;
+  }
+  if (settings & 32)
+  {
+    // Labels 0 .. K (K = 1 to 4) of the same bytes, in one pass.
+    using LabelImageType = itk::Image<std::uint8_t, 3>;
+    using LabelMeshType = itk::Mesh<double, 3>;
+    const unsigned int labelCount = 2 + (settings >> 6);
+    auto               labels = LabelImageType::New();
+    labels->SetRegions(gridSize);
+    labels->Allocate();
+    const std::size_t available = size - 4;
+    for (std::size_t i = 0; i < voxels; ++i)
+    {
+      labels->GetBufferPointer()[i] =
+        static_cast<std::uint8_t>(available > 0 ? data[4 + i % available] % labelCount : 0u);
+    }
+    auto multi = itk::MultiLabelSurfaceNetsImageToMeshFilter<LabelImageType, LabelMeshType>::New();
+    multi->SetInput(labels);
+    multi->SetMaximumNumberOfIterations((settings & 1) ? 0 : 10);
+    multi->SetNumberOfWorkUnits(1);
+    try
+    {
+      multi->Update();
+    }
+    catch (const itk::ExceptionObject &)
+    {
+      return 0; // a refusal with a message (only the background)
+    }
+    for (const auto label : multi->GetExtractedLabels())
+    {
+      auto calculator = itk::TriangleMeshQualityCalculator<LabelMeshType>::New();
+      calculator->SetMesh(multi->GetLabelSurface(label));
+      calculator->Compute();
+      if (!calculator->GetReport().IsValidClosedSurface())
+      {
+        std::cerr << "MultiLabelSurfaceNets emitted an invalid surface of label " << static_cast<int>(label)
+                  << " (grid " << gridSize << ", settings " << static_cast<int>(settings) << "):\n";
+        calculator->GetReport().Print(std::cerr);
+        std::abort();
+      }
+    }
+    return 0;
   }
   static const Relaxation relaxations[] = {
     Relaxation::Automatic, Relaxation::None, Relaxation::Averaging, Relaxation::Gradient, Relaxation::Combined

@@ -3,7 +3,8 @@
 # UndefinedBehaviorSanitizer in build-fuzz/, and runs each on a seed corpus:
 #   MeshFileFuzzer    the mesh-file readers (VTK legacy, VTP, PLY, STL, OBJ, OFF) and the
 #                     checks before a QuadEdgeMesh; a refusal is fine, a crash is not
-#   ExtractionFuzzer  SurfaceNets on small volumes; every emitted mesh must be valid
+#   ExtractionFuzzer  SurfaceNets on small volumes, and every label of small label maps in
+#                     one pass; every emitted mesh (each label's surface) must be valid
 #   CommandLineFuzzer the command-line tool's commands with fuzzed arguments: a refusal
 #                     (exit 2) or a failure naming the file (exit 1) is fine, any other
 #                     exception, a crash or a hang is not
@@ -59,6 +60,9 @@ printf "\x02$tetrahedron_ply" > "$corpus/mesh/seed-tetrahedron-ply"
 printf "\x03$tetrahedron_stl" > "$corpus/mesh/seed-triangle-stl"
 printf '\x04\x04\x04\x00\x80\x80\x80\x80\x80\x05\x05\x80\x80\x05\x05\x80' > "$corpus/extraction/seed-block"
 printf '\x06\x06\x06\x12\x80\x7f\x80\x7f\x00\x80\x7f\x80' > "$corpus/extraction/seed-checker-hq"
+# Label maps (bit 5 of the settings): 3 labels, and 4 labels unrelaxed.
+printf '\x05\x05\x05\xa0\x00\x01\x02\x03\x01\x02\x00\x03\x02' > "$corpus/extraction/seed-labels"
+printf '\x04\x04\x04\xe1\x01\x02\x01\x02\x03\x04\x00\x04\x03' > "$corpus/extraction/seed-labels-checker"
 # Command lines: the first byte chooses the command (0 phantom, 1 extract, 2 improve,
 # 3 refine, 4 quality, 5 report, 6 match, 7 shape-model), NUL bytes separate the arguments;
 # the scratch directory holds m.obj, m.vtk and s.nrrd.
@@ -70,6 +74,7 @@ seed_command() { # seed_command NAME INDEX ARGS...
 seed_command phantom 0 sphere p.nrrd --size 12 --spacing 1x1x2
 seed_command extract 1 s.nrrd e.vtk --iso 0 --inside below --quality high --rounds 2 --report
 seed_command extract-phantom 1 --phantom torus t.ply --size 16 --label-sigma 1.5 --min-component-voxels 3
+seed_command extract-labels 1 s.nrrd l.vtk --label-thresholds -1,1 --combined c.vtp --label-list 1,2
 seed_command improve 2 m.obj i.stl --iterations 3
 seed_command refine 3 s.nrrd m.vtk r.vtk --max-deviation 2 --cycles 1 --csv r.csv
 seed_command quality 4 m.obj m.vtk --json q.json --csv q.csv --phantom sphere --image s.nrrd
