@@ -10,8 +10,9 @@
 # directory (removed afterwards). The inputs are made by the tool itself: the phantoms
 # (sphere, two spheres, torus, narrow cleft, an ellipsoid on 1x1x2.5 mm voxels) in SNA,
 # SNERT and high quality, a label image, Delaunay and quad faces, Gaussian gradients,
-# `improve` (regularity swaps with Laplacian, Taubin and safe smoothing) and `refine`
-# (a geodesic sphere and a SurfaceNets start on the noisy chapter-4 sphere).
+# `improve` (regularity swaps with Laplacian, Taubin and safe smoothing), `refine`
+# (a geodesic sphere and a SurfaceNets start on the noisy chapter-4 sphere) and the labels
+# of that sphere in one pass.
 set -euo pipefail
 me=${1:-build/examples/meshextraction}
 me=$(cd "$(dirname "$me")" && pwd)/$(basename "$me")
@@ -63,6 +64,8 @@ run refine chapter4.nrrd refine-sphere.vtk --initial sphere --radius 8 --subdivi
   --target-quality 0.9
 run refine chapter4.nrrd refine-surfacenets.vtk --initial surfacenets --iso 50 --max-deviation 2 --cycles 2
 run refine torus-distance.nrrd torus-snert.vtk refine-torus.vtk --max-deviation 1.5 --cycles 1
+# Every label in one pass: the noisy sphere's shell and core as labels, and all faces once.
+run extract chapter4.nrrd multi.vtk --label-thresholds 30,70 --combined multi-combined.vtk
 
 for f in *.vtk; do
   sha256sum "$f"
