@@ -74,6 +74,12 @@ struct MeshExtraction_EXPORT SurfaceNetsCellTable
     return m_SheetOfEdge[configuration * 64u + faceRules][edge];
   }
 
+  /** The centre of the midpoints of the edges in `edges` (bit e: edge e, at least one),
+   * in the cell's local coordinates: where a node of those edges keeps apart from the
+   * cell's other nodes. */
+  Vec3
+  CentreOfEdges(unsigned int edges) const;
+
   static const SurfaceNetsCellTable &
   Get();
 

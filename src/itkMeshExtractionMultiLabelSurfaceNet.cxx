@@ -336,21 +336,9 @@ public:
     {
       const CellRecord & record = records[r];
       const auto         cell = CellOfKey(record.cell);
-      Vec3               sum = MakeVec3(0, 0, 0);
-      unsigned int       count = 0;
-      for (unsigned int e = 0; e < 12; ++e)
-      {
-        if ((record.edges >> e) & 1u)
-        {
-          for (unsigned int d = 0; d < 3; ++d)
-          {
-            sum[d] += 0.5 * (((table.edgeCorners[e][0] >> d) & 1) + ((table.edgeCorners[e][1] >> d) & 1));
-          }
-          ++count;
-        }
-      }
-      m_Entries.push_back(
-        { record.vertex, nodeOfVertex[record.vertex], MakeVec3(cell[0], cell[1], cell[2]) + sum * (1.0 / count) });
+      m_Entries.push_back({ record.vertex,
+                            nodeOfVertex[record.vertex],
+                            MakeVec3(cell[0], cell[1], cell[2]) + table.CentreOfEdges(record.edges) });
       for (std::int64_t dz = -2; dz <= 2; ++dz)
       {
         for (std::int64_t dy = -2; dy <= 2; ++dy)
@@ -886,20 +874,7 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
     const Vec3 corner = MakeVec3(cell[0], cell[1], cell[2]);
     if (nodeFixed[n])
     {
-      Vec3         sum = MakeVec3(0, 0, 0);
-      unsigned int count = 0;
-      for (unsigned int e = 0; e < 12; ++e)
-      {
-        if ((nodeEdges[n] >> e) & 1u)
-        {
-          for (unsigned int d = 0; d < 3; ++d)
-          {
-            sum[d] += 0.5 * (((table.edgeCorners[e][0] >> d) & 1) + ((table.edgeCorners[e][1] >> d) & 1));
-          }
-          ++count;
-        }
-      }
-      faces.positions[n] = corner + sum * (1.0 / count);
+      faces.positions[n] = corner + table.CentreOfEdges(nodeEdges[n]);
       faces.boxLower[n] = faces.positions[n];
       faces.boxUpper[n] = faces.positions[n];
       ++result.numberOfFixedNodes;
@@ -931,19 +906,21 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
   // is free of crossings, so this ends. Where a label touches itself (a pinched node),
   // its own surface has its two vertices there a little apart (PinchSeparation), which
   // its faces near that node are checked with too.
-  std::vector<Vec3>                              physical(numberOfNodes);
+  IndexedTriangleMesh                            mesh; // its points: the nodes' physical points
+  std::vector<Vec3> &                            physical = mesh.points;
   LargeBlockVector<std::array<std::uint32_t, 4>> polygons;
   unsigned int                                   polygonSize = 3;
   const PinchedVertices                          pinches(
     records, pinched, nodeOfVertex, faces.quads, quadLabels, quadSides, nodeCell, numberOfLabels);
-  IndexedTriangleMesh        mesh;
   std::vector<std::uint8_t>  halvings(numberOfNodes, 0);
   std::vector<std::uint8_t>  movedBack(numberOfNodes, 0);
+  std::vector<std::uint8_t>  moved(numberOfNodes, 0); // in the last round
   std::vector<std::uint32_t> queries;
   auto                       atStart = [&](const TriangleIndices & tri) {
     return faces.positions[tri[0]] == start[tri[0]] && faces.positions[tri[1]] == start[tri[1]] &&
            faces.positions[tri[2]] == start[tri[2]];
   };
+  physical.resize(numberOfNodes);
   auto makeFaces = [&]() {
     ToPhysical(faces.positions.data(),
                numberOfNodes,
@@ -956,11 +933,23 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
   for (unsigned int round = 0;; ++round)
   {
     makeFaces();
-    mesh.points = physical;
     mesh.triangles.resize(polygons.size());
     for (std::size_t t = 0; t < polygons.size(); ++t)
     {
       mesh.triangles[t] = { { polygons[t][0], polygons[t][1], polygons[t][2] } };
+    }
+    // After the first round only the faces of quads with a node moved back can have
+    // changed: both triangles of such a quad (its diagonal may have turned, giving a
+    // triangle without the moved node).
+    queries.clear();
+    for (std::size_t q = 0; round > 0 && q < faces.quads.size(); ++q)
+    {
+      const auto & quad = faces.quads[q];
+      if (moved[quad[0]] || moved[quad[1]] || moved[quad[2]] || moved[quad[3]])
+      {
+        queries.push_back(static_cast<std::uint32_t>(2 * q));
+        queries.push_back(static_cast<std::uint32_t>(2 * q + 1));
+      }
     }
     std::vector<std::uint32_t> badNodes;
     for (const auto & p : round == 0 ? FindSelfIntersections(mesh) : FindSelfIntersections(mesh, &queries))
@@ -970,14 +959,21 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
     }
     // A face pressed flat (three nodes of a junction line in a row, say) goes back too,
     // unless all its nodes are at the start already.
-    for (const auto & tri : mesh.triangles)
-    {
+    auto checkFlat = [&](const TriangleIndices & tri) {
       if (TriangleQArea(physical[tri[0]], physical[tri[1]], physical[tri[2]]) <=
             ValidityThresholds::DegenerateQAreaTolerance &&
           !atStart(tri))
       {
         badNodes.insert(badNodes.end(), tri.begin(), tri.end());
       }
+    };
+    if (round == 0)
+    {
+      std::for_each(mesh.triangles.begin(), mesh.triangles.end(), checkFlat);
+    }
+    for (const std::uint32_t t : queries)
+    {
+      checkFlat(mesh.triangles[t]);
     }
     pinches.FindCrossings(faces.positions, physical, polygons, parameters, atStart, badNodes);
     if (badNodes.empty())
@@ -991,7 +987,7 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
       makeFaces();
       break;
     }
-    std::vector<std::uint8_t> moved(numberOfNodes, 0);
+    std::fill(moved.begin(), moved.end(), 0);
     for (const std::uint32_t n : badNodes)
     {
       if (moved[n])
@@ -1007,15 +1003,6 @@ MakeMultiLabelSurfaceNet(const std::uint32_t *                  labels,
       else
       {
         faces.positions[n] = start[n] + (faces.positions[n] - start[n]) * 0.5;
-      }
-    }
-    queries.clear();
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    {
-      const auto & tri = mesh.triangles[t];
-      if (moved[tri[0]] || moved[tri[1]] || moved[tri[2]])
-      {
-        queries.push_back(static_cast<std::uint32_t>(t));
       }
     }
   }

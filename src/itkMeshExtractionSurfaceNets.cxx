@@ -337,21 +337,15 @@ SettleFaceRulesAndNumberNodes(SurfaceNet & net, const SurfaceNetsCellTable & tab
 Vec3
 SheetCentre(const SurfaceNetsCellTable & table, const SurfaceCell & c, unsigned int s)
 {
-  Vec3         sum = MakeVec3(0, 0, 0);
-  unsigned int count = 0;
+  unsigned int edges = 0;
   for (unsigned int e = 0; e < 12; ++e)
   {
-    if (table.SheetOfEdge(c.configuration, c.faceRules, e) != static_cast<std::int8_t>(s))
+    if (table.SheetOfEdge(c.configuration, c.faceRules, e) == static_cast<std::int8_t>(s))
     {
-      continue;
+      edges |= 1u << e;
     }
-    for (unsigned int d = 0; d < 3; ++d)
-    {
-      sum[d] += 0.5 * (((table.edgeCorners[e][0] >> d) & 1) + ((table.edgeCorners[e][1] >> d) & 1));
-    }
-    ++count;
   }
-  return sum * (1.0 / count);
+  return table.CentreOfEdges(edges);
 }
 
 /** Each node's cell, start position and box: the cell shrunk by `margin` voxels, the
@@ -703,6 +697,25 @@ SurfaceNetsCellTable::SurfaceNetsCellTable()
         FindSheets(*this, configuration, crossing, rules, m_SheetOfEdge[configuration * 64 + rules]);
     }
   }
+}
+
+Vec3
+SurfaceNetsCellTable::CentreOfEdges(unsigned int edges) const
+{
+  Vec3         sum = MakeVec3(0, 0, 0);
+  unsigned int count = 0;
+  for (unsigned int e = 0; e < 12; ++e)
+  {
+    if ((edges >> e) & 1u)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        sum[d] += 0.5 * (((edgeCorners[e][0] >> d) & 1) + ((edgeCorners[e][1] >> d) & 1));
+      }
+      ++count;
+    }
+  }
+  return sum * (1.0 / count);
 }
 
 const SurfaceNetsCellTable &

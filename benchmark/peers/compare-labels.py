@@ -156,6 +156,31 @@ def multi_label_filter_times(benchmarks, path, n):
     return times
 
 
+def vtk_all_labels(name, image, present, runs, triangles=False):
+    """VTK's filter `name` over every label at once on 1 and 2 threads: the best time (ms) of
+    runs // 5 runs each, and the last output (triangles only if asked: vtkSurfaceNets3D)."""
+    vtk.vtkSMPTools.SetBackend("STDThread")
+    times = []
+    output = None
+    for threads in (1, 2):
+        vtk.vtkSMPTools.Initialize(threads)
+        best = None
+        for run in range(max(1, runs // 5)):
+            f = vtk.vtkSurfaceNets3D() if name == "vtkSurfaceNets3D" else vtk.vtkDiscreteFlyingEdges3D()
+            f.SetInputData(image)
+            for k, value in enumerate(present):
+                f.SetValue(k, value)
+            if triangles:
+                f.SetOutputMeshTypeToTriangles()
+            start = time.perf_counter()
+            f.Update()
+            elapsed = 1000.0 * (time.perf_counter() - start)
+            best = elapsed if best is None else min(best, elapsed)
+            output = f.GetOutput()
+        times.append(best)
+    return times, output
+
+
 def many_labels(tool, benchmarks, workdir, n, count, runs):
     """The synthetic label map: VTK's filters over every label at once, and the module's
     one-pass filter (its benchmark on the same map) and extract --all-labels (the command's
@@ -170,24 +195,10 @@ def many_labels(tool, benchmarks, workdir, n, count, runs):
     print("\n{} labels (Voronoi cells in a ball), {}³:\n".format(len(present), n))
     print("| method | ms 1 thread / 2 | triangles | per-label surfaces valid |")
     print("|---|---|---|---|")
-    vtk.vtkSMPTools.SetBackend("STDThread")
     for name in ("vtkSurfaceNets3D", "vtkDiscreteFlyingEdges3D"):
-        times = []
-        for threads in (1, 2):
-            vtk.vtkSMPTools.Initialize(threads)
-            best = None
-            for run in range(max(1, runs // 5)):
-                f = vtk.vtkSurfaceNets3D() if name == "vtkSurfaceNets3D" else vtk.vtkDiscreteFlyingEdges3D()
-                f.SetInputData(image)
-                for k, value in enumerate(present):
-                    f.SetValue(k, value)
-                start = time.perf_counter()
-                f.Update()
-                elapsed = 1000.0 * (time.perf_counter() - start)
-                best = elapsed if best is None else min(best, elapsed)
-            times.append(best)
+        times, output = vtk_all_labels(name, image, present, runs)
         print("| {} (VTK {}, one pass) | {:.0f} / {:.0f} | {} | not measured |".format(
-            name, vtk.vtkVersion.GetVTKVersion(), times[0], times[1], f.GetOutput().GetNumberOfCells()))
+            name, vtk.vtkVersion.GetVTKVersion(), times[0], times[1], output.GetNumberOfCells()))
     filter_times = multi_label_filter_times(benchmarks, path, n)
     if 1 in filter_times:
         print("| module MultiLabelSurfaceNetsImageToMeshFilter (filter alone, one pass) | {:.0f} / {:.0f} | {} | "
@@ -270,24 +281,7 @@ def real_label_map(tool, benchmarks, workdir, name, title, labels, spacing, orig
     print("| method | ms 1 thread / 2 | labels valid | triangles | q_angle | q_area | non-manifold | inconsistent edges |"
           " crossing pairs |")
     print("|---|---|---|---|---|---|---|---|---|")
-    vtk.vtkSMPTools.SetBackend("STDThread")
-    times = []
-    output = None
-    for threads in (1, 2):
-        vtk.vtkSMPTools.Initialize(threads)
-        best = None
-        for run in range(max(1, runs // 5)):
-            f = vtk.vtkSurfaceNets3D()
-            f.SetInputData(label_image)
-            for k, value in enumerate(present):
-                f.SetValue(k, value)
-            f.SetOutputMeshTypeToTriangles()
-            start = time.perf_counter()
-            f.Update()
-            elapsed = 1000.0 * (time.perf_counter() - start)
-            best = elapsed if best is None else min(best, elapsed)
-            output = f.GetOutput()
-        times.append(best)
+    times, output = vtk_all_labels("vtkSurfaceNets3D", label_image, present, runs, triangles=True)
     vtk_rows = surface_quality(tool, vtk_label_surfaces(output, present, os.path.join(workdir, name + "-vtk")), workdir)
     filter_times = multi_label_filter_times(benchmarks, path, 256)
     out = os.path.join(workdir, name + "-module")

@@ -806,17 +806,7 @@ RunAllLabels(const Arguments & args, ExtractSettings s, const MeshWriteSettings 
   }
   if (args.Has("combined"))
   {
-    const ExtractMeshType * all = filter->GetOutput();
-    ME::PolygonMesh         combined;
-    for (auto it = all->GetPoints()->Begin(); it != all->GetPoints()->End(); ++it)
-    {
-      combined.points.push_back(ME::MakeVec3(it.Value()[0], it.Value()[1], it.Value()[2]));
-    }
-    for (auto it = all->GetCells()->Begin(); it != all->GetCells()->End(); ++it)
-    {
-      std::vector<std::uint32_t> corners(it.Value()->PointIdsBegin(), it.Value()->PointIdsEnd());
-      combined.AddPolygon(corners.data(), corners.size());
-    }
+    ME::PolygonMesh            combined = ME::MakePolygonMeshFromMesh(*filter->GetOutput());
     ME::PolygonMesh::CellArray pairs;
     pairs.name = "labels";
     pairs.components = 2;
