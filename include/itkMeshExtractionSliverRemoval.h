@@ -48,6 +48,14 @@ struct SliverRemovalParameters
   double degenerateQAreaTolerance{ 1e-3 };
   /** The output stores float coordinates: every check sees the rounded points. */
   bool roundToFloat{ false };
+  /** Isotropic remeshing before the sliver passes (needs a projection): the target
+   * edge length in millimetres, or 0 for none. Edges longer than 4/3 of it are split,
+   * edges shorter than 4/5 of it collapsed, edges swapped toward valence 6, and the
+   * nodes relaxed along the surface and projected onto it (Botsch and Kobbelt's
+   * isotropic remeshing), each change under the same guards as the sliver passes. */
+  double targetEdgeLength{ 0.0 };
+  /** Rounds of split, collapse, swap and relaxation in the isotropic remeshing. */
+  unsigned int remeshingIterations{ 8 };
 };
 
 /** What RemoveSlivers did. */
@@ -58,6 +66,11 @@ struct SliverRemovalResult
   std::size_t  numberOfMoves{ 0 };     ///< vertices moved (and kept)
   std::size_t  numberOfUndone{ 0 };    ///< operations undone because a face crossed another or a component collapsed
   unsigned int numberOfPasses{ 0 };
+  std::size_t  numberOfSplits{ 0 };             ///< edges split by the isotropic remeshing (and kept)
+  std::size_t  numberOfRemeshingCollapses{ 0 }; ///< of numberOfCollapses, those of the isotropic remeshing
+  std::size_t  numberOfRemeshingSwaps{ 0 };     ///< of numberOfSwaps, those of the isotropic remeshing
+  std::size_t numberOfRelaxedNodes{ 0 }; ///< node moves of the remeshing's relaxation (and kept), summed over its steps
+  std::size_t numberOfRelaxationUndone{ 0 }; ///< relaxation moves taken back by the guards
 };
 
 /** Projects a point (continuous index) onto the surface the mesh approximates; false
@@ -90,11 +103,11 @@ using SurfaceProjection = std::function<bool(Vec3 & index)>;
  * quality is measured in physical space. Collapsed nodes stay in `positions`, in no
  * triangle; `triangles` loses two triangles per collapse. Sequential and deterministic. */
 MeshExtraction_EXPORT SliverRemovalResult
-RemoveSlivers(LargeBlockVector<Vec3> &         positions,
-              std::vector<TriangleIndices> &   triangles,
-              const Vec3 &                     origin,
-              const Matrix<double, 3, 3> &     indexToPhysical,
-              const SurfaceProjection &        project,
+RemoveSlivers(LargeBlockVector<Vec3> &        positions,
+              std::vector<TriangleIndices> &  triangles,
+              const Vec3 &                    origin,
+              const Matrix<double, 3, 3> &    indexToPhysical,
+              const SurfaceProjection &       project,
               const SliverRemovalParameters & parameters);
 
 } // namespace detail

@@ -268,6 +268,27 @@ public:
   itkSetMacro(HighQualitySliverRemoval, bool);
   itkGetConstMacro(HighQualitySliverRemoval, bool);
   itkBooleanMacro(HighQualitySliverRemoval);
+  /** In the high-quality mode, remesh isotropically before the sliver removal (default
+   * off): edges longer than 4/3 of HighQualityTargetEdgeLength are split, edges
+   * shorter than 4/5 of it collapsed, edges swapped toward valence 6, and the nodes
+   * relaxed along the surface and projected onto the iso-surface (Botsch and Kobbelt's
+   * isotropic remeshing), each change under the sliver removal's guards. One node per
+   * cell spaces the nodes as the voxels are spaced; this gives anisotropic voxels
+   * near-equilateral triangles without resampling the image. Needs a surface to project
+   * onto: a greyscale input, or a label input with LabelSurfaceSigma > 0 (otherwise it
+   * is skipped). The output then has other nodes than the net (GetSurfaceNet()). See
+   * GetNumberOfSplits. */
+  itkSetMacro(HighQualityRemeshing, bool);
+  itkGetConstMacro(HighQualityRemeshing, bool);
+  itkBooleanMacro(HighQualityRemeshing);
+  /** The target edge length (mm) of HighQualityRemeshing; 0 (the default) means the
+   * mean of the input's spacings. */
+  itkSetMacro(HighQualityTargetEdgeLength, double);
+  itkGetConstMacro(HighQualityTargetEdgeLength, double);
+  /** HighQualityRemeshing's rounds of splits, collapses, swaps and relaxation
+   * (default 8). */
+  itkSetMacro(HighQualityRemeshingIterations, unsigned int);
+  itkGetConstMacro(HighQualityRemeshingIterations, unsigned int);
   /** Undo relaxation where faces would cross (default on): nodes of crossing
    * faces move back toward their cell centres until the mesh is free of
    * self-intersections (see GetNumberOfNodesMovedBack). */
@@ -325,6 +346,11 @@ public:
   itkGetConstMacro(NumberOfCollapses, SizeValueType);
   itkGetConstMacro(NumberOfSliverSwaps, SizeValueType);
   itkGetConstMacro(NumberOfSliverMoves, SizeValueType);
+  /** After Update() with HighQualityRemeshing: edges split, collapsed and swapped by the
+   * remeshing (kept after the checks; those of the sliver removal are above). */
+  itkGetConstMacro(NumberOfSplits, SizeValueType);
+  itkGetConstMacro(NumberOfRemeshingCollapses, SizeValueType);
+  itkGetConstMacro(NumberOfRemeshingSwaps, SizeValueType);
 
   /** After Update(): the net itself (nodes in continuous index space, quads, links). */
   const MeshExtraction::SurfaceNet &
@@ -519,6 +545,9 @@ private:
   bool              m_ResampleToIsotropicVoxels{ false };
   double            m_LabelSurfaceSigma{ 2.0 };
   bool              m_HighQualitySliverRemoval{ true };
+  bool              m_HighQualityRemeshing{ false };
+  double            m_HighQualityTargetEdgeLength{ 0.0 };
+  unsigned int      m_HighQualityRemeshingIterations{ 8 };
 
   using LabelSurfaceImageType = Image<float, 3>;
   LabelSurfaceImageType::Pointer m_LabelSurface; // while GenerateData runs (MakeLabelSurface)
@@ -538,6 +567,9 @@ private:
   SizeValueType m_NumberOfCollapses{ 0 };
   SizeValueType m_NumberOfSliverSwaps{ 0 };
   SizeValueType m_NumberOfSliverMoves{ 0 };
+  SizeValueType m_NumberOfSplits{ 0 };
+  SizeValueType m_NumberOfRemeshingCollapses{ 0 };
+  SizeValueType m_NumberOfRemeshingSwaps{ 0 };
 
   MeshExtraction::SurfaceNet m_Net;
 };

@@ -82,6 +82,11 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::VerifyParam
   {
     itkExceptionMacro("ConvergedSwapFraction must be in [0, 1], got " << m_ConvergedSwapFraction << '.');
   }
+  if (!(m_HighQualityTargetEdgeLength >= 0.0 && std::isfinite(m_HighQualityTargetEdgeLength)))
+  {
+    itkExceptionMacro("HighQualityTargetEdgeLength must be a finite length >= 0 mm (0: the mean spacing), got "
+                      << m_HighQualityTargetEdgeLength << '.');
+  }
   if (!(m_MinimumComponentVolume >= 0.0 && std::isfinite(m_MinimumComponentVolume)))
   {
     itkExceptionMacro("MinimumComponentVolume must be a finite volume >= 0 mm^3, got " << m_MinimumComponentVolume
@@ -884,10 +889,16 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
   m_NumberOfCollapses = 0;
   m_NumberOfSliverSwaps = 0;
   m_NumberOfSliverMoves = 0;
-  if (m_HighQualitySliverRemoval)
+  m_NumberOfSplits = 0;
+  m_NumberOfRemeshingCollapses = 0;
+  m_NumberOfRemeshingSwaps = 0;
+  if (m_HighQualitySliverRemoval || m_HighQualityRemeshing)
   {
+    const std::size_t numberOfNodes = m_Net.positions.size();
     this->RemoveSlivers(triangles);
-    faces.removedNodes = m_NumberOfCollapses > 0;
+    // Collapsed nodes, and nodes of splits taken back, are in no face.
+    faces.removedNodes =
+      m_NumberOfCollapses + m_NumberOfRemeshingCollapses > 0 || m_Net.positions.size() != numberOfNodes;
     faces.polygons.resize(triangles.size());
   }
   for (std::size_t f = 0; f < faces.polygons.size(); ++f)
@@ -957,6 +968,25 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSlive
   SliverRemovalParameters parameters;
   parameters.degenerateQAreaTolerance = ValidityThresholds::HighQualityDegenerateQAreaTolerance;
   parameters.roundToFloat = RoundsToFloat;
+  if (!m_HighQualitySliverRemoval)
+  {
+    parameters.maximumNumberOfPasses = 0;
+  }
+  if (m_HighQualityRemeshing)
+  {
+    parameters.remeshingIterations = m_HighQualityRemeshingIterations;
+    parameters.targetEdgeLength = m_HighQualityTargetEdgeLength;
+    if (!(parameters.targetEdgeLength > 0.0))
+    {
+      // The mean spacing: the lengths of the index axes in physical space.
+      double sum = 0.0;
+      for (unsigned int c = 0; c < 3; ++c)
+      {
+        sum += std::sqrt(M[0][c] * M[0][c] + M[1][c] * M[1][c] + M[2][c] * M[2][c]);
+      }
+      parameters.targetEdgeLength = sum / 3.0;
+    }
+  }
   SliverRemovalResult result;
   if (m_LabelSurface)
   {
@@ -980,9 +1010,12 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSlive
     };
     result = MeshExtraction::detail::RemoveSlivers(m_Net.positions, triangles, first, M, project, parameters);
   }
-  m_NumberOfCollapses = result.numberOfCollapses;
-  m_NumberOfSliverSwaps = result.numberOfSwaps;
+  m_NumberOfCollapses = result.numberOfCollapses - result.numberOfRemeshingCollapses;
+  m_NumberOfSliverSwaps = result.numberOfSwaps - result.numberOfRemeshingSwaps;
   m_NumberOfSliverMoves = result.numberOfMoves;
+  m_NumberOfSplits = result.numberOfSplits;
+  m_NumberOfRemeshingCollapses = result.numberOfRemeshingCollapses;
+  m_NumberOfRemeshingSwaps = result.numberOfRemeshingSwaps;
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -1090,6 +1123,9 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "HighQualityIterations: " << m_HighQualityIterations << '\n';
   os << indent << "HighQualityCellDilation: " << m_HighQualityCellDilation << '\n';
   os << indent << "HighQualitySliverRemoval: " << m_HighQualitySliverRemoval << '\n';
+  os << indent << "HighQualityRemeshing: " << m_HighQualityRemeshing << '\n';
+  os << indent << "HighQualityTargetEdgeLength: " << m_HighQualityTargetEdgeLength << '\n';
+  os << indent << "HighQualityRemeshingIterations: " << m_HighQualityRemeshingIterations << '\n';
   os << indent << "MinimumComponentVolume: " << m_MinimumComponentVolume << '\n';
   os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
   os << indent << "LabelSurfaceSigma: " << m_LabelSurfaceSigma << '\n';

@@ -292,7 +292,8 @@ Methods()
       RunSlicerLabelmapPipeline },
     { "sn-hq",
       "SurfaceNets HQ",
-      "SurfaceNetsImageToMeshFilter, SNERT + HighQuality (regularity swaps and SNERT rounds, then the sliver removal), defaults otherwise",
+      "SurfaceNetsImageToMeshFilter, SNERT + HighQuality (regularity swaps and SNERT rounds, then the sliver removal), "
+      "defaults otherwise",
       false,
       [](const ExtractionInput & in) {
         return RunSurfaceNets(in, Relaxation::Combined, [](SurfaceNetsFilterType * f) { f->SetHighQuality(true); });
@@ -306,6 +307,17 @@ Methods()
         return RunSurfaceNets(in, Relaxation::Combined, [](SurfaceNetsFilterType * f) {
           f->SetHighQuality(true);
           f->SetResampleToIsotropicVoxels(true);
+        });
+      } },
+    { "sn-hq-remesh",
+      "SurfaceNets HQ remeshed",
+      "as sn-hq, with HighQualityRemeshing (isotropic remeshing to the mean spacing on the iso-surface, before the "
+      "sliver removal)",
+      false,
+      [](const ExtractionInput & in) {
+        return RunSurfaceNets(in, Relaxation::Combined, [](SurfaceNetsFilterType * f) {
+          f->SetHighQuality(true);
+          f->SetHighQualityRemeshing(true);
         });
       } },
   };

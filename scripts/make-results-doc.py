@@ -52,6 +52,7 @@ METHOD_NAMES = {
     "slicer": "Slicer labelmap DFE+Sinc0.01",
     "sn-hq": "SurfaceNets HQ",
     "sn-hq-iso": "SurfaceNets HQ isotropic",
+    "sn-hq-remesh": "SurfaceNets HQ remeshed",
 }
 
 # Thesis Table 4.1 (noiseless sphere): q_area, mean radius, variance per step.

@@ -17,6 +17,7 @@
  *=========================================================================*/
 #include "itkMeshExtractionSliverRemoval.h"
 
+#include "itkMeshExtractionParallel.h"
 #include "itkMeshExtractionSelfIntersections.h"
 #include "itkMeshExtractionSurfaceNets.h"
 #include "itkMeshExtractionTriangleGeometry.h"
@@ -54,22 +55,29 @@ struct Operation
   std::vector<std::pair<std::uint32_t, std::pair<Vec3, Vec3>>>      nodes;     ///< node, old index / physical
   std::vector<std::uint32_t>                                        changed;   ///< alive slots it made
   std::vector<std::uint32_t>                                        dead;      ///< slots it removed
-  std::uint32_t component{ std::numeric_limits<std::uint32_t>::max() }; ///< the component it changed
-  double        sixVolumeChange{ 0.0 };                                 ///< of that component's 6 x volume
+  std::uint32_t component{ std::numeric_limits<std::uint32_t>::max() };        ///< the component it changed
+  double        sixVolumeChange{ 0.0 };                                        ///< of that component's 6 x volume
 };
 
 enum class Kind : std::uint8_t
 {
   Collapse,
   Swap,
-  Move
+  Move,
+  Split
 };
+
+/** The isotropic remeshing refuses a collapse or a swap that leaves a triangle with a
+ * smaller q_angle than this, unless the triangles it replaces had one as small: the
+ * remeshing evens out the edge lengths, and must not make the slivers it is there to
+ * avoid. */
+constexpr double RemeshingQAngleFloor = 0.3;
 
 struct Candidate
 {
   Kind          kind;
   std::uint32_t a;
-  std::uint32_t b; ///< the other end of the edge (Collapse, Swap)
+  std::uint32_t b; ///< the other end of the edge (Collapse, Swap, Split)
   Vec3          index;
   double        score;
 };
@@ -77,21 +85,21 @@ struct Candidate
 class SliverRemover
 {
 public:
-  SliverRemover(LargeBlockVector<Vec3> &         positions,
-                std::vector<TriangleIndices> &   triangles,
-                const Vec3 &                     origin,
-                const Matrix<double, 3, 3> &     indexToPhysical,
-                const SurfaceProjection &        project,
+  SliverRemover(LargeBlockVector<Vec3> &        positions,
+                std::vector<TriangleIndices> &  triangles,
+                const Vec3 &                    origin,
+                const Matrix<double, 3, 3> &    indexToPhysical,
+                const SurfaceProjection &       project,
                 const SliverRemovalParameters & parameters)
-    : m_Index(positions)
-    , m_Output(triangles)
-    , m_Physical(m_Check.points)
-    , m_Triangles(m_Check.triangles)
-    , m_Origin(origin)
-    , m_M(indexToPhysical)
-    , m_MInverse(indexToPhysical.GetInverse())
-    , m_Project(project)
-    , m_Parameters(parameters)
+      : m_Index(positions)
+      , m_Output(triangles)
+      , m_Physical(m_Check.points)
+      , m_Triangles(m_Check.triangles)
+      , m_Origin(origin)
+      , m_M(indexToPhysical)
+      , m_MInverse(indexToPhysical.GetInverse())
+      , m_Project(project)
+      , m_Parameters(parameters)
   {
     m_Check.triangles.swap(triangles);
     m_Physical.resize(m_Index.size());
@@ -123,6 +131,12 @@ public:
   SliverRemovalResult
   Run()
   {
+    if (m_Parameters.targetEdgeLength > 0.0 && m_Project)
+    {
+      this->Remesh(m_Parameters.targetEdgeLength);
+    }
+    m_FirstSliverPass = true;
+    m_Worklist.clear();
     for (unsigned int pass = 0; pass < m_Parameters.maximumNumberOfPasses; ++pass)
     {
       ++m_Stamp;
@@ -268,10 +282,10 @@ private:
     {
       return false;
     }
-    const std::uint32_t c = Third(m_Triangles[on[0]], a, b);
-    const std::uint32_t d = Third(m_Triangles[on[1]], a, b);
-    const auto          na = this->Neighbours(a);
-    const auto          nb = this->Neighbours(b);
+    const std::uint32_t        c = Third(m_Triangles[on[0]], a, b);
+    const std::uint32_t        d = Third(m_Triangles[on[1]], a, b);
+    const auto                 na = this->Neighbours(a);
+    const auto                 nb = this->Neighbours(b);
     std::vector<std::uint32_t> common;
     std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
     // The link condition: a and b share exactly the two nodes across the edge, and
@@ -347,6 +361,115 @@ private:
     m_Incident[d].push_back(on[0]);
     m_Incident[c].push_back(on[1]);
     op.changed = { on[0], on[1] };
+    return true;
+  }
+
+  /** A new node at `index`, in component `component`, in no triangle yet. */
+  std::uint32_t
+  NewNode(Operation & op, const Vec3 & index, std::uint32_t component)
+  {
+    const auto v = static_cast<std::uint32_t>(m_Index.size());
+    m_Index.push_back(index);
+    m_Physical.push_back(this->ToPhysicalPoint(index));
+    m_Incident.emplace_back();
+    m_Lock.push_back(0);
+    m_Changed.push_back(0);
+    m_Volumes.vertexComponent.push_back(component);
+    op.incident.emplace_back(v, std::vector<std::uint32_t>()); // undone: in no triangle again
+    return v;
+  }
+  /** A new triangle slot holding t (undone: dead). */
+  std::uint32_t
+  NewTriangle(Operation & op, const TriangleIndices & t)
+  {
+    const auto f = static_cast<std::uint32_t>(m_Triangles.size());
+    m_Triangles.push_back(t);
+    m_Alive.push_back(true);
+    m_Boxes.push_back(TriangleBox(m_Check, f));
+    m_Owner.push_back(-1);
+    m_IsStale.push_back(false);
+    m_Failed.push_back(0);
+    op.triangles.emplace_back(f, TriangleIndices{ t[0], t[0], t[0] });
+    op.alive.emplace_back(f, false);
+    return f;
+  }
+  /** The sizes of the node and triangle arrays, to go back to after trying a split. */
+  std::pair<std::size_t, std::size_t>
+  Sizes() const
+  {
+    return { m_Index.size(), m_Triangles.size() };
+  }
+  void
+  Truncate(const std::pair<std::size_t, std::size_t> & sizes)
+  {
+    const std::size_t nodes = sizes.first;
+    const std::size_t slots = sizes.second;
+    if (m_Index.size() > nodes)
+    {
+      m_Index.resize(nodes);
+      m_Physical.resize(nodes);
+      m_Incident.resize(nodes);
+      m_Lock.resize(nodes);
+      m_Changed.resize(nodes);
+      m_Volumes.vertexComponent.resize(nodes);
+    }
+    if (m_Triangles.size() > slots)
+    {
+      m_Triangles.resize(slots);
+      m_Alive.resize(slots);
+      m_Boxes.resize(slots);
+      m_Owner.resize(slots);
+      m_IsStale.resize(slots);
+      m_Failed.resize(slots);
+    }
+  }
+
+  /** Splits the edge (a, b) at a new node at `index`: (a, b, c) and (b, a, d) become
+   * (a, m, c), (m, b, c), (b, m, d) and (m, a, d), the same orientation. op.changed
+   * lists the old slot running from a to b, its new neighbour, then the other old slot
+   * and its new neighbour. */
+  bool
+  ApplySplit(Operation & op, std::uint32_t a, std::uint32_t b, const Vec3 & index)
+  {
+    auto on = this->EdgeTriangles(a, b);
+    if (on.size() != 2)
+    {
+      return false;
+    }
+    if (!RunsFrom(m_Triangles[on[0]], a, b))
+    {
+      std::swap(on[0], on[1]);
+    }
+    if (!RunsFrom(m_Triangles[on[0]], a, b) || !RunsFrom(m_Triangles[on[1]], b, a))
+    {
+      return false;
+    }
+    const std::uint32_t c = Third(m_Triangles[on[0]], a, b);
+    const std::uint32_t d = Third(m_Triangles[on[1]], a, b);
+    if (c == d)
+    {
+      return false;
+    }
+    for (std::uint32_t v : { a, b, c, d })
+    {
+      this->SaveIncident(op, v);
+    }
+    const std::uint32_t m = this->NewNode(op, index, m_Volumes.vertexComponent[a]);
+    op.nodes.emplace_back(m, std::make_pair(index, m_Physical[m]));
+    op.triangles.emplace_back(on[0], m_Triangles[on[0]]);
+    op.triangles.emplace_back(on[1], m_Triangles[on[1]]);
+    m_Triangles[on[0]] = { a, m, c };
+    m_Triangles[on[1]] = { b, m, d };
+    const std::uint32_t s0 = this->NewTriangle(op, { m, b, c });
+    const std::uint32_t s1 = this->NewTriangle(op, { m, a, d });
+    Erase(m_Incident[a], on[1]);
+    m_Incident[a].push_back(s1);
+    Erase(m_Incident[b], on[0]);
+    m_Incident[b].push_back(s0);
+    m_Incident[c].push_back(s0);
+    m_Incident[d].push_back(s1);
+    m_Incident[m] = { on[0], s0, on[1], s1 };
+    op.changed = { on[0], s0, on[1], s1 };
     return true;
   }
 
@@ -495,6 +618,8 @@ private:
       case Kind::Move:
         this->ApplyMove(op, c.a, c.index);
         return true;
+      case Kind::Split:
+        return this->ApplySplit(op, c.a, c.b, c.index);
     }
     return false;
   }
@@ -503,6 +628,10 @@ private:
   double
   Try(Candidate c, double toBeat)
   {
+    if (c.kind == Kind::Split)
+    {
+      return this->TrySplit(c, toBeat);
+    }
     double q = 0.0; // the smallest q_angle the operation leaves (the guards do not move nodes)
     {
       // First only the shapes: most candidates lose, and the guards' normals and folds
@@ -534,9 +663,9 @@ private:
     {
       star = c.kind == Kind::Collapse ? this->Star({ c.a, c.b }) : this->Star({ c.a });
     }
-    const auto reference = c.kind == Kind::Swap ? std::vector<std::pair<std::uint32_t, Vec3>>() : this->Normals(star);
+    const auto   reference = c.kind == Kind::Swap ? std::vector<std::pair<std::uint32_t, Vec3>>() : this->Normals(star);
     const double foldLimit = this->FoldLimit(star);
-    Operation  op;
+    Operation    op;
     if (!this->Apply(op, c))
     {
       return -1.0;
@@ -544,6 +673,45 @@ private:
     const bool valid = this->PassesGuards(op, reference, common, foldLimit);
     this->Undo(op);
     return valid ? q : -1.0;
+  }
+
+  /** Try for a split: each new triangle is held to the normal of the one it halves. */
+  double
+  TrySplit(const Candidate & c, double toBeat)
+  {
+    const auto on = this->EdgeTriangles(c.a, c.b);
+    if (on.size() != 2)
+    {
+      return -1.0;
+    }
+    const auto   normals = this->Normals(on);
+    const double foldLimit = this->FoldLimit(on);
+    const auto   sizes = this->Sizes();
+    Operation    op;
+    double       score = -1.0;
+    if (this->Apply(op, c))
+    {
+      std::vector<std::pair<std::uint32_t, Vec3>> reference;
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        const std::uint32_t halved = op.changed[k - k % 2];
+        for (const auto & [slot, normal] : normals)
+        {
+          if (slot == halved)
+          {
+            reference.emplace_back(op.changed[k], normal);
+          }
+        }
+      }
+      const double q = this->MinimumQAngle(op.changed);
+      if (q > toBeat && this->PassesGuards(op, reference, MakeVec3(0, 0, 0), foldLimit))
+      {
+        score = q;
+      }
+      this->Undo(op);
+    }
+    this->Truncate(sizes);
+    return score;
   }
 
   /** The share of `slots` in 6 x the volume of `component` (ComponentSixVolumes' terms). */
@@ -716,7 +884,7 @@ private:
   OperateAroundSlivers(double threshold)
   {
     std::vector<std::pair<double, std::uint32_t>> slivers;
-    auto consider = [&](std::uint32_t f) {
+    auto                                          consider = [&](std::uint32_t f) {
       if (m_Alive[f])
       {
         const double q = this->QAngle(f);
@@ -726,8 +894,9 @@ private:
         }
       }
     };
-    if (m_Stamp == 1)
+    if (m_FirstSliverPass)
     {
+      m_FirstSliverPass = false;
       for (std::uint32_t f = 0; f < m_Triangles.size(); ++f)
       {
         consider(f);
@@ -787,26 +956,540 @@ private:
         m_Failed[f] = m_Stamp;
         continue;
       }
-      const std::vector<std::uint32_t> affected =
-        best.kind == Kind::Swap ? this->EdgeTriangles(best.a, best.b)
-                                : (best.kind == Kind::Collapse ? this->Star({ best.a, best.b }) : this->Star({ best.a }));
-      Operation op;
-      op.component = m_Volumes.vertexComponent[best.a];
-      const double before = this->SixVolume(affected, op.component);
-      this->Apply(op, best);
-      op.sixVolumeChange = this->SixVolume(affected, op.component) - before;
-      if (op.component < m_SixVolume.size())
-      {
-        m_SixVolume[op.component] += op.sixVolumeChange;
-      }
-      this->Lock(op.changed);
-      for (const auto & saved : op.incident)
-      {
-        m_Lock[saved.first] = m_Stamp;
-      }
-      m_Made.push_back(best);
-      m_Operations.push_back(std::move(op));
+      this->Make(best);
     }
+  }
+
+  /** The triangles a candidate changes (or removes). */
+  std::vector<std::uint32_t>
+  Affected(const Candidate & c) const
+  {
+    switch (c.kind)
+    {
+      case Kind::Swap:
+      case Kind::Split:
+        return this->EdgeTriangles(c.a, c.b);
+      case Kind::Collapse:
+        return this->Star({ c.a, c.b });
+      case Kind::Move:
+        break;
+    }
+    return this->Star({ c.a });
+  }
+
+  /** Makes a candidate that Try found valid, as an operation of this pass: its
+   * component's volume kept up to date, its neighbourhood locked for the rest of the
+   * pass. */
+  void
+  Make(const Candidate & c)
+  {
+    const std::vector<std::uint32_t> affected = this->Affected(c);
+    const std::size_t                slots = m_Triangles.size();
+    Operation                        op;
+    op.component = m_Volumes.vertexComponent[c.a];
+    const double before = this->SixVolume(affected, op.component);
+    this->Apply(op, c);
+    std::vector<std::uint32_t> after = affected;
+    for (std::uint32_t f : op.changed)
+    {
+      if (f >= slots)
+      {
+        after.push_back(f); // a split's new triangles
+      }
+    }
+    op.sixVolumeChange = this->SixVolume(after, op.component) - before;
+    if (op.component < m_SixVolume.size())
+    {
+      m_SixVolume[op.component] += op.sixVolumeChange;
+    }
+    this->Lock(op.changed);
+    for (const auto & saved : op.incident)
+    {
+      m_Lock[saved.first] = m_Stamp;
+    }
+    m_Made.push_back(c);
+    m_Operations.push_back(std::move(op));
+  }
+
+  // --- isotropic remeshing ---
+  /** Calls visit(a, b, length) for every edge once (a < b; every edge of a closed
+   * mesh is in two triangles, once each way). */
+  template <typename TVisit>
+  void
+  ForEachEdge(TVisit && visit) const
+  {
+    for (std::uint32_t f = 0; f < m_Triangles.size(); ++f)
+    {
+      if (!m_Alive[f])
+      {
+        continue;
+      }
+      const auto & t = m_Triangles[f];
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t a = t[k];
+        const std::uint32_t b = t[(k + 1) % 3];
+        if (a < b)
+        {
+          visit(a, b, Norm(m_Physical[a] - m_Physical[b]));
+        }
+      }
+    }
+  }
+
+  /** Calls visit(a, b, c, d, on) for every edge (a, b) once (a < b) with its two
+   * triangles `on` and their third nodes c and d. */
+  template <typename TVisit>
+  void
+  ForEachEdgeWithItsTriangles(TVisit && visit) const
+  {
+    this->ForEachEdge([&](std::uint32_t a, std::uint32_t b, double) {
+      const auto on = this->EdgeTriangles(a, b);
+      if (on.size() == 2)
+      {
+        visit(a, b, Third(m_Triangles[on[0]], a, b), Third(m_Triangles[on[1]], a, b), on);
+      }
+    });
+  }
+
+  /** One pass of remeshing candidates, in order, each with the smallest q_angle its
+   * triangles must keep in `score`: those Try finds valid are made where nothing of
+   * this pass locked their neighbourhood, then the crossing check undoes what it must.
+   * `accept` may refuse a candidate at the moment it comes up. Returns the operations
+   * kept. */
+  template <typename TAccept>
+  std::size_t
+  RemeshingPass(const std::vector<Candidate> & candidates, TAccept && accept)
+  {
+    ++m_Stamp;
+    m_Operations.clear();
+    m_Made.clear();
+    for (Candidate c : candidates)
+    {
+      const auto affected = this->Affected(c);
+      if (affected.empty() || this->Locked(affected) || !accept(c) ||
+          (!m_Refused.empty() && m_Refused.count(Key(c)) > 0))
+      {
+        continue;
+      }
+      if (this->Try(c, c.score) >= 0.0)
+      {
+        this->Make(c);
+      }
+    }
+    if (m_Operations.empty())
+    {
+      return 0;
+    }
+    const std::size_t undone = m_Result.numberOfUndone;
+    const std::size_t made = m_Operations.size();
+    this->UndoInvalidOperations();
+    return made - (m_Result.numberOfUndone - undone);
+  }
+
+  /** The smallest q_angle a collapse or swap must leave: that of the triangles it
+   * replaces if below RemeshingQAngleFloor, else the floor. */
+  double
+  Floor(const std::vector<std::uint32_t> & affected) const
+  {
+    return std::min(this->MinimumQAngle(affected), RemeshingQAngleFloor) - 1e-12;
+  }
+
+  std::size_t
+  SplitLongEdges(double longest)
+  {
+    std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> edges;
+    this->ForEachEdge([&](std::uint32_t a, std::uint32_t b, double length) {
+      if (length > longest)
+      {
+        edges.push_back({ -length, { a, b } });
+      }
+    });
+    std::sort(edges.begin(), edges.end());
+    std::vector<Candidate> candidates;
+    for (const auto & e : edges)
+    {
+      const std::uint32_t a = e.second.first;
+      const std::uint32_t b = e.second.second;
+      candidates.push_back({ Kind::Split, a, b, (m_Index[a] + m_Index[b]) * 0.5, 0.0 });
+    }
+    return this->RemeshingPass(candidates, [this](Candidate & c) {
+      // Projected only now: most candidates of a pass are locked by then.
+      Vec3 middle = c.index;
+      if (m_Project(middle))
+      {
+        c.index = middle; // else on the edge, where the relaxation projects it later
+      }
+      return true;
+    });
+  }
+
+  std::size_t
+  CollapseShortEdges(double shortest, double longest)
+  {
+    std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> edges;
+    this->ForEachEdge([&](std::uint32_t a, std::uint32_t b, double length) {
+      if (length < shortest)
+      {
+        edges.push_back({ length, { a, b } });
+      }
+    });
+    std::sort(edges.begin(), edges.end());
+    std::vector<Candidate> candidates;
+    for (const auto & e : edges)
+    {
+      const std::uint32_t a = e.second.first;
+      const std::uint32_t b = e.second.second;
+      candidates.push_back({ Kind::Collapse, a, b, (m_Index[a] + m_Index[b]) * 0.5, 0.0 });
+    }
+    return this->RemeshingPass(candidates, [&](Candidate & c) {
+      if (!m_Project(c.index))
+      {
+        return false;
+      }
+      // No edge of the merged node may be long enough to be split again.
+      const Vec3 p = this->ToPhysicalPoint(c.index);
+      for (std::uint32_t v : { c.a, c.b })
+      {
+        for (std::uint32_t w : this->Neighbours(v))
+        {
+          if (w != c.a && w != c.b && Norm(m_Physical[w] - p) >= longest)
+          {
+            return false;
+          }
+        }
+      }
+      c.score = this->Floor(this->Affected(c));
+      return true;
+    });
+  }
+
+  /** Swaps that bring the valences of the four nodes nearer 6. */
+  std::size_t
+  SwapTowardValenceSix()
+  {
+    std::vector<Candidate> candidates;
+    auto                   deviation = [](std::size_t valence) { return std::abs(static_cast<double>(valence) - 6.0); };
+    this->ForEachEdgeWithItsTriangles(
+      [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d, const auto &) {
+        const std::size_t va = m_Incident[a].size();
+        const std::size_t vb = m_Incident[b].size();
+        const std::size_t vc = m_Incident[c].size();
+        const std::size_t vd = m_Incident[d].size();
+        const double      before = deviation(va) + deviation(vb) + deviation(vc) + deviation(vd);
+        const double      after = deviation(va - 1) + deviation(vb - 1) + deviation(vc + 1) + deviation(vd + 1);
+        if (after < before)
+        {
+          candidates.push_back({ Kind::Swap, a, b, m_Index[a], 0.0 });
+        }
+      });
+    return this->RemeshingPass(candidates, [&](Candidate & c) {
+      c.score = this->Floor(this->Affected(c));
+      return true;
+    });
+  }
+
+  /** Boxes of every triangle anew, and the tree refitted (or built anew, `rebuild`). */
+  void
+  RefitAll(bool rebuild)
+  {
+    ParallelForBlocks(m_Triangles.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t f = begin; f < end; ++f)
+      {
+        m_Boxes[f] = TriangleBox(m_Check, static_cast<std::uint32_t>(f));
+      }
+    });
+    for (std::uint32_t f : m_Stale)
+    {
+      m_IsStale[f] = false;
+    }
+    m_Stale.clear();
+    if (rebuild)
+    {
+      m_Tree.Build(m_Check, nullptr, &m_Boxes);
+    }
+    else
+    {
+      m_Tree.Refit(m_Check, m_Boxes);
+    }
+  }
+
+  /** One step of tangential relaxation: every node to the centroid of its neighbours,
+   * within its tangent plane, then projected onto the surface; all at once, then the moves that leave a triangle
+   * degenerate, turned, folded or crossing another, or a component collapsed, are taken back until none is left. */
+  void
+  Relax(double settledMove)
+  {
+    const double            settled = settledMove * settledMove;
+    const std::size_t       n = m_Index.size();
+    const std::vector<Vec3> oldIndex(m_Index.begin(), m_Index.end());
+    const std::vector<Vec3> oldPhysical = m_Physical;
+    std::vector<Vec3>       target(n);
+    std::vector<char>       moves(n, 0);
+    ParallelForBlocks(n, 4096, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t v = begin; v < end; ++v)
+      {
+        if (m_Incident[v].empty())
+        {
+          continue;
+        }
+        // The mean of the neighbours (each twice around a closed fan), within the
+        // tangent plane of the area-weighted normal.
+        Vec3   centroid = MakeVec3(0, 0, 0);
+        Vec3   normal = MakeVec3(0, 0, 0);
+        double count = 0.0;
+        for (std::uint32_t f : m_Incident[v])
+        {
+          for (std::uint32_t w : m_Triangles[f])
+          {
+            if (w != v)
+            {
+              centroid += m_Physical[w];
+              count += 1.0;
+            }
+          }
+          normal += this->Normal(f);
+        }
+        if (!(count > 0.0))
+        {
+          continue;
+        }
+        centroid *= 1.0 / count;
+        const Vec3 unit = Unit(normal);
+        const Vec3 p = m_Physical[v];
+        const Vec3 tangential = centroid - unit * Dot(centroid - p, unit);
+        if (SquaredNorm(tangential - p) < settled)
+        {
+          continue; // settled: its triangles stay as they are, and need no check
+        }
+        Vec3 index = this->ToIndex(tangential);
+        if (m_Project(index) && SquaredNorm(index - m_Index[v]) > 1e-12)
+        {
+          target[v] = index;
+          moves[v] = 1;
+        }
+      }
+    });
+    std::vector<std::uint32_t> moved;
+    for (std::uint32_t v = 0; v < n; ++v)
+    {
+      if (moves[v])
+      {
+        moved.push_back(v);
+        m_Index[v] = target[v];
+        m_Physical[v] = this->ToPhysicalPoint(target[v]);
+      }
+    }
+    std::vector<char> isMoved = moves;
+    std::size_t       reverted = 0;
+    auto              revert = [&](std::uint32_t v, std::vector<std::uint32_t> & touched) {
+      if (isMoved[v])
+      {
+        isMoved[v] = 0;
+        m_Index[v] = oldIndex[v];
+        m_Physical[v] = oldPhysical[v];
+        touched.insert(touched.end(), m_Incident[v].begin(), m_Incident[v].end());
+        ++reverted;
+      }
+    };
+    auto oldNormal = [&](std::uint32_t f) {
+      const auto & t = m_Triangles[f];
+      return Unit(Cross(oldPhysical[t[1]] - oldPhysical[t[0]], oldPhysical[t[2]] - oldPhysical[t[0]]));
+    };
+    auto anyMoved = [&](std::uint32_t f) {
+      const auto & t = m_Triangles[f];
+      return isMoved[t[0]] || isMoved[t[1]] || isMoved[t[2]];
+    };
+    auto incidentOf = [&](const std::vector<std::uint32_t> & nodes) {
+      std::vector<std::uint32_t> slots;
+      for (std::uint32_t v : nodes)
+      {
+        slots.insert(slots.end(), m_Incident[v].begin(), m_Incident[v].end());
+      }
+      std::sort(slots.begin(), slots.end());
+      slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+      return slots;
+    };
+    // The guards on single triangles, until no moved node is left in a failing one.
+    auto guard = [&](std::vector<std::uint32_t> check) {
+      while (!check.empty())
+      {
+        std::sort(check.begin(), check.end());
+        check.erase(std::unique(check.begin(), check.end()), check.end());
+        std::vector<std::uint32_t> touched;
+        for (std::uint32_t f : check)
+        {
+          if (!m_Alive[f] || !anyMoved(f))
+          {
+            continue;
+          }
+          const auto & t = m_Triangles[f];
+          const bool   bad = TriangleQArea(m_Physical[t[0]], m_Physical[t[1]], m_Physical[t[2]]) <=
+                             m_Parameters.degenerateQAreaTolerance ||
+                           !(Dot(Unit(this->Normal(f)), oldNormal(f)) > ReplacementCosine) ||
+                           !(this->SharpestFold(f) > ValidityThresholds::FoldCosine);
+          if (bad)
+          {
+            for (std::uint32_t v : t)
+            {
+              revert(v, touched);
+            }
+          }
+        }
+        // A fold is between two triangles: the neighbours of reverted nodes' triangles
+        // are checked again too (their fold with a reverted triangle changed).
+        check.clear();
+        for (std::uint32_t f : touched)
+        {
+          check.push_back(f);
+          const auto & t = m_Triangles[f];
+          for (unsigned int k = 0; k < 3; ++k)
+          {
+            for (std::uint32_t g : this->EdgeTriangles(t[k], t[(k + 1) % 3]))
+            {
+              check.push_back(g);
+            }
+          }
+        }
+      }
+    };
+    std::vector<std::uint32_t> initialCheck = incidentOf(moved);
+    guard(initialCheck);
+    std::vector<std::uint32_t> queries;
+    for (std::uint32_t f : initialCheck)
+    {
+      if (anyMoved(f))
+      {
+        queries.push_back(f);
+      }
+    }
+    bool clean = false;
+    for (unsigned int round = 0; round < ValidityThresholds::MaximumRepairRounds && !clean; ++round)
+    {
+      clean = true;
+      // Components pressed flat or turned inside out: all their moves back.
+      const auto volumes = ComponentSixVolumes(m_Triangles, m_Physical, m_Volumes.origin, [&](std::size_t f) {
+        const std::uint32_t c = m_Volumes.vertexComponent[m_Triangles[f][0]];
+        return c < m_Volumes.origin.size() ? c : 0u;
+      });
+      std::vector<std::uint32_t> touched;
+      for (std::uint32_t v : moved)
+      {
+        const std::uint32_t c = m_Volumes.vertexComponent[v];
+        if (isMoved[v] && c < volumes.size() &&
+            IsCollapsedComponent(m_Volumes.reference[c],
+                                 volumes[c],
+                                 m_Volumes.reference[c],
+                                 ValidityThresholds::HighQualityCollapseFraction))
+        {
+          revert(v, touched);
+        }
+      }
+      this->RefitAll(false);
+      std::vector<std::uint32_t> asked;
+      for (std::uint32_t f : queries)
+      {
+        if (m_Alive[f])
+        {
+          asked.push_back(f);
+        }
+      }
+      for (const auto & [f, g] : FindSelfIntersections(m_Check, asked, m_Tree))
+      {
+        for (std::uint32_t h : { f, g })
+        {
+          for (std::uint32_t v : m_Triangles[h])
+          {
+            revert(v, touched);
+          }
+        }
+      }
+      if (!touched.empty())
+      {
+        clean = false;
+        guard(touched);
+        // The reverted nodes' triangles are new to the surface: they are asked next.
+        queries = incidentOf([&] {
+          std::vector<std::uint32_t> nodes;
+          for (std::uint32_t f : touched)
+          {
+            nodes.insert(nodes.end(), m_Triangles[f].begin(), m_Triangles[f].end());
+          }
+          return nodes;
+        }());
+      }
+    }
+    if (!clean)
+    {
+      std::vector<std::uint32_t> touched;
+      for (std::uint32_t v : moved)
+      {
+        revert(v, touched);
+      }
+      this->RefitAll(false);
+    }
+    for (std::uint32_t v : moved)
+    {
+      if (isMoved[v])
+      {
+        ++m_Result.numberOfRelaxedNodes;
+        m_Changed[v] = m_Stamp;
+      }
+    }
+    m_Result.numberOfRelaxationUndone += reverted;
+    // The components' volumes as they are now, for the operations after.
+    m_SixVolume = ComponentSixVolumes(m_Triangles, m_Physical, m_Volumes.origin, [&](std::size_t f) {
+      const std::uint32_t c = m_Volumes.vertexComponent[m_Triangles[f][0]];
+      return c < m_Volumes.origin.size() ? c : 0u;
+    });
+  }
+
+  void
+  Remesh(double targetEdgeLength)
+  {
+    m_Remeshing = true;
+    const double longest = targetEdgeLength * 4.0 / 3.0;
+    const double shortest = targetEdgeLength * 4.0 / 5.0;
+    // A node whose relaxation would move it less than this stays: such moves no longer
+    // change the triangles' shapes, and each moved node's triangles must be checked.
+    const double settledMove = 0.01 * targetEdgeLength;
+    // One pass of each kind per round: what the locks of a pass left is made in the
+    // next round, after the relaxation, where the edges' lengths have changed anyway.
+    for (unsigned int iteration = 0; iteration < m_Parameters.remeshingIterations; ++iteration)
+    {
+      this->SplitLongEdges(longest);
+      this->CollapseShortEdges(shortest, longest);
+      this->SwapTowardValenceSix();
+      ++m_Stamp;
+      this->Relax(settledMove);
+    }
+    // Then the shapes alone: swaps that raise the smaller q_angle of an edge's two
+    // triangles, and relaxation, in turn.
+    for (unsigned int step = 0; step < m_Parameters.remeshingIterations; ++step)
+    {
+      this->SwapTowardQuality();
+      ++m_Stamp;
+      this->Relax(settledMove);
+    }
+    m_Remeshing = false;
+  }
+
+  /** Swaps that raise the smaller q_angle of the edge's two triangles. */
+  std::size_t
+  SwapTowardQuality()
+  {
+    std::vector<Candidate> candidates;
+    this->ForEachEdgeWithItsTriangles(
+      [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d, const auto & on) {
+        const double before = std::min(this->QAngle(on[0]), this->QAngle(on[1]));
+        const double after = std::min(MeasureTriangle(m_Physical[c], m_Physical[a], m_Physical[d]).qAngle,
+                                      MeasureTriangle(m_Physical[d], m_Physical[b], m_Physical[c]).qAngle);
+        if (after > before + MinimumGain)
+        {
+          candidates.push_back({ Kind::Swap, a, b, m_Index[a], before + MinimumGain });
+        }
+      });
+    return this->RemeshingPass(candidates, [&](Candidate &) { return true; });
   }
 
   /** Undoes the operations whose triangles cross others or whose component collapsed,
@@ -825,9 +1508,10 @@ private:
     for (std::size_t i = 0; i < m_Operations.size(); ++i)
     {
       const std::uint32_t c = m_Operations[i].component;
-      if (c < m_SixVolume.size() &&
-          IsCollapsedComponent(
-            m_Volumes.reference[c], m_SixVolume[c], m_Volumes.reference[c], ValidityThresholds::HighQualityCollapseFraction))
+      if (c < m_SixVolume.size() && IsCollapsedComponent(m_Volumes.reference[c],
+                                                         m_SixVolume[c],
+                                                         m_Volumes.reference[c],
+                                                         ValidityThresholds::HighQualityCollapseFraction))
       {
         undo(i);
       }
@@ -913,12 +1597,17 @@ private:
       {
         case Kind::Collapse:
           ++m_Result.numberOfCollapses;
+          m_Result.numberOfRemeshingCollapses += m_Remeshing ? 1 : 0;
           break;
         case Kind::Swap:
           ++m_Result.numberOfSwaps;
+          m_Result.numberOfRemeshingSwaps += m_Remeshing ? 1 : 0;
           break;
         case Kind::Move:
           ++m_Result.numberOfMoves;
+          break;
+        case Kind::Split:
+          ++m_Result.numberOfSplits;
           break;
       }
     }
@@ -952,6 +1641,12 @@ private:
   void
   RefitIfManyStale(std::size_t numberOfQueries)
   {
+    if (m_Tree.GetNumberOfTriangles() != m_Triangles.size())
+    {
+      // Splits added triangles the tree does not hold: built anew over all of them.
+      this->RefitAll(true);
+      return;
+    }
     if (m_Stale.size() * numberOfQueries < 4 * m_Triangles.size())
     {
       return;
@@ -1014,6 +1709,8 @@ private:
   }
 
   LargeBlockVector<Vec3> &                m_Index;
+  bool                                    m_FirstSliverPass{ true };
+  bool                                    m_Remeshing{ false }; ///< the isotropic remeshing is running
   std::vector<TriangleIndices> &          m_Output;
   IndexedTriangleMesh                     m_Check; ///< the physical points and the triangles (dead: one node thrice)
   std::vector<Vec3> &                     m_Physical;
@@ -1033,24 +1730,24 @@ private:
   std::uint32_t                           m_Stamp{ 0 };
   std::vector<Operation>                  m_Operations;
   std::vector<std::uint32_t>              m_Stale;
-  std::vector<std::uint32_t>              m_Failed;  ///< per triangle: the pass in which no candidate helped it (0: none)
-  std::vector<std::uint32_t>              m_Changed; ///< per node: the last pass whose kept operations changed its faces
-  std::vector<bool>                       m_IsStale;
-  std::vector<double>                     m_SixVolume; ///< per component: 6 x its signed volume now
-  std::vector<Candidate>                  m_Made; ///< per operation of this pass: what it was
+  std::vector<std::uint32_t> m_Failed;  ///< per triangle: the pass in which no candidate helped it (0: none)
+  std::vector<std::uint32_t> m_Changed; ///< per node: the last pass whose kept operations changed its faces
+  std::vector<bool>          m_IsStale;
+  std::vector<double>        m_SixVolume; ///< per component: 6 x its signed volume now
+  std::vector<Candidate>     m_Made;      ///< per operation of this pass: what it was
   /** Operations undone by a check, never tried again (a pass would make them again). */
   std::set<std::tuple<Kind, std::uint32_t, std::uint32_t, double, double, double>> m_Refused;
-  std::vector<std::uint32_t>              m_Worklist; ///< the triangles the next pass looks at
-  SliverRemovalResult                     m_Result;
+  std::vector<std::uint32_t> m_Worklist; ///< the triangles the next pass looks at
+  SliverRemovalResult        m_Result;
 };
 } // namespace
 
 SliverRemovalResult
-RemoveSlivers(LargeBlockVector<Vec3> &         positions,
-              std::vector<TriangleIndices> &   triangles,
-              const Vec3 &                     origin,
-              const Matrix<double, 3, 3> &     indexToPhysical,
-              const SurfaceProjection &        project,
+RemoveSlivers(LargeBlockVector<Vec3> &        positions,
+              std::vector<TriangleIndices> &  triangles,
+              const Vec3 &                    origin,
+              const Matrix<double, 3, 3> &    indexToPhysical,
+              const SurfaceProjection &       project,
               const SliverRemovalParameters & parameters)
 {
   if (triangles.empty())

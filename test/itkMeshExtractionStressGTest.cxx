@@ -94,6 +94,13 @@ TEST(StressRuns, DISABLED_RandomSmoothVolumes)
           hq.IsValidClosedSurface() && hq.eulerCharacteristic == before.eulerCharacteristic &&
             hq.connectedComponents == before.connectedComponents,
           seed);
+    high->SetHighQualityRemeshing(true);
+    high->Update();
+    const auto remeshed = Analyze(high->GetOutput());
+    check("high quality remeshed valid, topology kept",
+          remeshed.IsValidClosedSurface() && remeshed.eulerCharacteristic == before.eulerCharacteristic &&
+            remeshed.connectedComponents == before.connectedComponents,
+          seed);
 
     auto swap = SwapType::New();
     swap->SetInput(input);
@@ -128,6 +135,7 @@ TEST(StressRuns, DISABLED_RandomSmoothVolumes)
   }
   for (const std::string what : { "SurfaceNets valid",
                                   "high quality valid, topology kept",
+                                  "high quality remeshed valid, topology kept",
                                   "edge swap valid, topology kept",
                                   "Laplacian x10 no self-intersection",
                                   "Laplacian x10 valid",

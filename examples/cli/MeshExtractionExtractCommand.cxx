@@ -67,6 +67,9 @@ struct ExtractSettings
   double                          cellDilation{};
   double                          labelSigma{};
   bool                            sliverRemoval{};
+  bool                            remeshing{};
+  double                          targetEdgeLength{};
+  unsigned int                    remeshingIterations{};
   bool                            isotropic{};
   double                          minimumComponentVolume{};
 };
@@ -92,6 +95,9 @@ ExtractDefaults()
   s.cellDilation = filter->GetHighQualityCellDilation();
   s.labelSigma = filter->GetLabelSurfaceSigma();
   s.sliverRemoval = filter->GetHighQualitySliverRemoval();
+  s.remeshing = filter->GetHighQualityRemeshing();
+  s.targetEdgeLength = filter->GetHighQualityTargetEdgeLength();
+  s.remeshingIterations = filter->GetHighQualityRemeshingIterations();
   s.isotropic = filter->GetResampleToIsotropicVoxels();
   s.minimumComponentVolume = filter->GetMinimumComponentVolume();
   return s;
@@ -157,6 +163,9 @@ ConfigureFilter(TFilter * filter, const ExtractSettings & s)
   filter->SetHighQualityCellDilation(s.cellDilation);
   filter->SetLabelSurfaceSigma(s.labelSigma);
   filter->SetHighQualitySliverRemoval(s.sliverRemoval);
+  filter->SetHighQualityRemeshing(s.remeshing);
+  filter->SetHighQualityTargetEdgeLength(s.targetEdgeLength);
+  filter->SetHighQualityRemeshingIterations(s.remeshingIterations);
   filter->SetResampleToIsotropicVoxels(s.isotropic);
   double minimumVolume = s.minimumComponentVolume;
   if (s.minimumComponentVoxels > 0.0)
@@ -199,6 +208,12 @@ PrintFilterSummary(const TFilter * filter, const ExtractSettings & s, const Stop
   {
     std::cerr << ", " << filter->GetNumberOfSwaps() << " swaps in " << filter->GetNumberOfRoundsPerformed()
               << " rounds";
+    if (s.remeshing)
+    {
+      std::cerr << ", remeshing: " << filter->GetNumberOfSplits() << " splits, "
+                << filter->GetNumberOfRemeshingCollapses() << " collapses, " << filter->GetNumberOfRemeshingSwaps()
+                << " swaps";
+    }
     if (s.sliverRemoval)
     {
       std::cerr << ", slivers: " << filter->GetNumberOfCollapses() << " collapses, " << filter->GetNumberOfSliverSwaps()
@@ -401,6 +416,14 @@ ReadMeshingOptions(const Arguments & args, ExtractSettings & s)
     throw UsageError("--sliver-removal must be on or off, got '" + sliverMode + "'");
   }
   s.sliverRemoval = sliverMode == "on";
+  const std::string remeshMode = args.Get("remeshing", s.remeshing ? "on" : "off");
+  if (remeshMode != "on" && remeshMode != "off")
+  {
+    throw UsageError("--remeshing must be on or off, got '" + remeshMode + "'");
+  }
+  s.remeshing = remeshMode == "on";
+  s.targetEdgeLength = args.GetDouble("target-edge-length", s.targetEdgeLength); // the filter checks it
+  s.remeshingIterations = NonNegative(args, "remeshing-iterations", s.remeshingIterations);
   s.isotropic = s.isotropic || args.Has("isotropic");
   s.threads = NonNegative(args, "threads", 0);
   SetDicomSeries(args.Get("series"));
@@ -1012,6 +1035,20 @@ MakeExtractCommand()
       "on|off",
       "--quality high: collapse, swap or move around the triangles with q_angle below 0.3 that the rounds leave",
       defaults.sliverRemoval ? "on" : "off" },
+    { "remeshing",
+      "on|off",
+      "--quality high: isotropic remeshing (splits, collapses, valence swaps, relaxation onto the iso-surface) "
+      "to --target-edge-length: near-equilateral triangles on anisotropic voxels without resampling",
+      defaults.remeshing ? "on" : "off" },
+    { "target-edge-length",
+      "MM",
+      "--remeshing on: the edge length it aims at (0: the mean voxel spacing)",
+      DefaultText(defaults.targetEdgeLength) },
+    { "remeshing-iterations",
+      "N",
+      "--remeshing on: rounds of splits, collapses and swaps, each with a relaxation, then as many of quality "
+      "swaps and relaxation",
+      DefaultText(defaults.remeshingIterations) },
     { "isotropic",
       "",
       "resample to cubic voxels of the smallest spacing first: better shaped, more triangles on anisotropic voxels",
