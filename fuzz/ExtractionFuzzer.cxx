@@ -16,7 +16,8 @@
  *
  *=========================================================================*/
 // libFuzzer harness for SurfaceNets on small volumes: the first bytes choose the grid
-// (1 to 7 voxels per axis), the relaxation, the triangulation and the high-quality mode;
+// (1 to 7 voxels per axis), the relaxation, the triangulation, the high-quality mode and
+// its isotropic remeshing (bit 6);
 // the rest are the voxels (signed bytes, the object where they are >= 0). The filter may
 // refuse an input (a constant image) with an itk::ExceptionObject; every mesh it emits
 // must be a valid closed surface (closed, 2-manifold, outward, no degenerate, inverted or
@@ -114,6 +115,7 @@ LLVMFuzzerTestOneInput(const std::uint8_t * data, std::size_t size)
   filter->SetRelaxation(relaxations[settings % 5]);
   filter->SetTriangulation((settings & 8) ? Triangulation::Delaunay : Triangulation::ShortestDiagonal);
   filter->SetHighQuality((settings & 16) != 0);
+  filter->SetHighQualityRemeshing((settings & 64) != 0);
   filter->SetNumberOfWorkUnits(1);
   try
   {
