@@ -574,13 +574,7 @@ private:
   {
     for (std::uint32_t f : op.changed)
     {
-      const auto & t = m_Triangles[f];
-      if (TriangleQArea(m_Physical[t[0]], m_Physical[t[1]], m_Physical[t[2]]) <= m_Parameters.degenerateQAreaTolerance)
-      {
-        return false;
-      }
-      const Vec3 n = Unit(this->Normal(f));
-      Vec3       before = common;
+      Vec3 before = common;
       for (const auto & [slot, normal] : reference)
       {
         if (slot == f)
@@ -588,12 +582,23 @@ private:
           before = normal;
         }
       }
-      if (!(Dot(n, before) > ReplacementCosine) || !(this->SharpestFold(f) > foldLimit))
+      if (!this->IsAcceptable(f, before, foldLimit))
       {
         return false;
       }
     }
     return true;
+  }
+  /** The guard on one changed triangle: not degenerate, turned less than
+   * ReplacementCosine allows from `before` (its unit normal before the change), and
+   * folded against no neighbour beyond `foldLimit`. */
+  bool
+  IsAcceptable(std::uint32_t f, const Vec3 & before, double foldLimit) const
+  {
+    const auto & t = m_Triangles[f];
+    return TriangleQArea(m_Physical[t[0]], m_Physical[t[1]], m_Physical[t[2]]) >
+             m_Parameters.degenerateQAreaTolerance &&
+           Dot(Unit(this->Normal(f)), before) > ReplacementCosine && this->SharpestFold(f) > foldLimit;
   }
   std::vector<std::pair<std::uint32_t, Vec3>>
   Normals(const std::vector<std::uint32_t> & slots) const
@@ -712,6 +717,16 @@ private:
     }
     this->Truncate(sizes);
     return score;
+  }
+
+  /** 6 x the volume of every component as the mesh is now (dead slots add nothing). */
+  std::vector<double>
+  CurrentSixVolumes() const
+  {
+    return ComponentSixVolumes(m_Triangles, m_Physical, m_Volumes.origin, [&](std::size_t f) {
+      const std::uint32_t c = m_Volumes.vertexComponent[m_Triangles[f][0]];
+      return c < m_Volumes.origin.size() ? c : 0u;
+    });
   }
 
   /** The share of `slots` in 6 x the volume of `component` (ComponentSixVolumes' terms). */
@@ -1323,14 +1338,9 @@ private:
           {
             continue;
           }
-          const auto & t = m_Triangles[f];
-          const bool   bad = TriangleQArea(m_Physical[t[0]], m_Physical[t[1]], m_Physical[t[2]]) <=
-                             m_Parameters.degenerateQAreaTolerance ||
-                           !(Dot(Unit(this->Normal(f)), oldNormal(f)) > ReplacementCosine) ||
-                           !(this->SharpestFold(f) > ValidityThresholds::FoldCosine);
-          if (bad)
+          if (!this->IsAcceptable(f, oldNormal(f), ValidityThresholds::FoldCosine))
           {
-            for (std::uint32_t v : t)
+            for (std::uint32_t v : m_Triangles[f])
             {
               revert(v, touched);
             }
@@ -1363,15 +1373,13 @@ private:
         queries.push_back(f);
       }
     }
-    bool clean = false;
+    bool                clean = false;
+    std::vector<double> volumes;
     for (unsigned int round = 0; round < ValidityThresholds::MaximumRepairRounds && !clean; ++round)
     {
       clean = true;
       // Components pressed flat or turned inside out: all their moves back.
-      const auto volumes = ComponentSixVolumes(m_Triangles, m_Physical, m_Volumes.origin, [&](std::size_t f) {
-        const std::uint32_t c = m_Volumes.vertexComponent[m_Triangles[f][0]];
-        return c < m_Volumes.origin.size() ? c : 0u;
-      });
+      volumes = this->CurrentSixVolumes();
       std::vector<std::uint32_t> touched;
       for (std::uint32_t v : moved)
       {
@@ -1437,11 +1445,9 @@ private:
       }
     }
     m_Result.numberOfRelaxationUndone += reverted;
-    // The components' volumes as they are now, for the operations after.
-    m_SixVolume = ComponentSixVolumes(m_Triangles, m_Physical, m_Volumes.origin, [&](std::size_t f) {
-      const std::uint32_t c = m_Volumes.vertexComponent[m_Triangles[f][0]];
-      return c < m_Volumes.origin.size() ? c : 0u;
-    });
+    // The components' volumes as they are now, for the operations after: those of the
+    // clean round, which moved nothing back.
+    m_SixVolume = clean ? std::move(volumes) : this->CurrentSixVolumes();
   }
 
   void
@@ -1479,9 +1485,19 @@ private:
   SwapTowardQuality()
   {
     std::vector<Candidate> candidates;
+    std::vector<double>    qAngle(m_Triangles.size(), 1.0); // each triangle's, once, not once per edge
+    ParallelForBlocks(qAngle.size(), 16384, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t f = begin; f < end; ++f)
+      {
+        if (m_Alive[f])
+        {
+          qAngle[f] = this->QAngle(static_cast<std::uint32_t>(f));
+        }
+      }
+    });
     this->ForEachEdgeWithItsTriangles(
       [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d, const auto & on) {
-        const double before = std::min(this->QAngle(on[0]), this->QAngle(on[1]));
+        const double before = std::min(qAngle[on[0]], qAngle[on[1]]);
         const double after = std::min(MeasureTriangle(m_Physical[c], m_Physical[a], m_Physical[d]).qAngle,
                                       MeasureTriangle(m_Physical[d], m_Physical[b], m_Physical[c]).qAngle);
         if (after > before + MinimumGain)

@@ -28,6 +28,7 @@
 #include "gtest/gtest.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -185,6 +186,19 @@ MarchingCubes(const Phantom & p)
   mc->SetObjectValue(1);
   mc->Update();
   return mc->GetOutput();
+}
+
+/** The sphere phantom's default grid with other sizes and spacings (mm) per axis. */
+ME::PhantomGrid
+SphereGrid(std::array<unsigned int, 3> size, std::array<double, 3> spacing)
+{
+  ME::PhantomGrid grid = ME::DefaultPhantomGrid(ME::PhantomShape::Sphere);
+  for (unsigned int k = 0; k < 3; ++k)
+  {
+    grid.size[k] = size[k];
+    grid.spacing[k] = spacing[k];
+  }
+  return grid;
 }
 } // namespace
 
@@ -499,14 +513,8 @@ TEST(SurfaceNetsImageToMeshFilter, ThinPlateAndNarrowCleftRetainTheirDetail)
 
 TEST(SurfaceNetsImageToMeshFilter, AnisotropicRotatedGridGivesTheSamePhysicalSurface)
 {
-  ME::PhantomGrid grid = ME::DefaultPhantomGrid(ME::PhantomShape::Sphere);
-  grid.size[0] = 80;
-  grid.size[1] = 64;
-  grid.size[2] = 44;
-  grid.spacing[0] = 0.8;
-  grid.spacing[1] = 1.0;
-  grid.spacing[2] = 1.45;
-  const double angle = 0.5;
+  ME::PhantomGrid grid = SphereGrid({ 80, 64, 44 }, { 0.8, 1.0, 1.45 });
+  const double    angle = 0.5;
   grid.direction.SetIdentity();
   grid.direction[0][0] = std::cos(angle);
   grid.direction[0][1] = -std::sin(angle);
@@ -983,17 +991,11 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityRemeshingEvensOutAnisotropicVoxels
   // the image's iso-surface: better shaped triangles without resampling the image, the
   // mesh valid, its topology and its accuracy kept.
   EXPECT_FALSE(itk::SurfaceNetsImageToMeshFilter<FloatImage>::New()->GetHighQualityRemeshing());
-  ME::PhantomGrid grid = ME::DefaultPhantomGrid(ME::PhantomShape::Sphere);
-  grid.size[0] = 64;
-  grid.size[1] = 64;
-  grid.size[2] = 42;
-  grid.spacing[0] = 0.96;
-  grid.spacing[1] = 0.96;
-  grid.spacing[2] = 1.5;
-  const Phantom p = MakePhantom(ME::PhantomShape::Sphere, grid);
-  std::size_t   splits = 0;
-  std::size_t   collapses = 0;
-  auto          run = [&](bool remeshing, unsigned int threads) -> QEMeshType::Pointer {
+  ME::PhantomGrid grid = SphereGrid({ 64, 64, 42 }, { 0.96, 0.96, 1.5 });
+  const Phantom   p = MakePhantom(ME::PhantomShape::Sphere, grid);
+  std::size_t     splits = 0;
+  std::size_t     collapses = 0;
+  auto            run = [&](bool remeshing, unsigned int threads) -> QEMeshType::Pointer {
     auto filter = itk::SurfaceNetsImageToMeshFilter<FloatImage>::New();
     filter->SetInput(p.image);
     filter->SetInsideIsAboveIsoValue(false);
@@ -1133,18 +1135,12 @@ TEST(SurfaceNetsImageToMeshFilter, HighQualityRoundsEndWhenTheSwapsHaveConverged
 
 TEST(SurfaceNetsImageToMeshFilter, HighQualityHoldsInPhysicalSpaceOnAnisotropicVoxels)
 {
-  ME::PhantomGrid grid = ME::DefaultPhantomGrid(ME::PhantomShape::Sphere);
   // Anisotropy of 1.1/0.9; beyond about 1.2 one node per cell cannot be spaced
   // evenly in physical space (documented in the filter).
-  grid.size[0] = 72;
-  grid.size[1] = 64;
-  grid.size[2] = 58;
-  grid.spacing[0] = 0.9;
-  grid.spacing[1] = 1.0;
-  grid.spacing[2] = 1.1;
-  const Phantom p = MakePhantom(ME::PhantomShape::Sphere, grid);
-  auto          mesh = ExtractHighQuality(p.image.GetPointer());
-  const auto    q = Measure(mesh.GetPointer());
+  ME::PhantomGrid grid = SphereGrid({ 72, 64, 58 }, { 0.9, 1.0, 1.1 });
+  const Phantom   p = MakePhantom(ME::PhantomShape::Sphere, grid);
+  auto            mesh = ExtractHighQuality(p.image.GetPointer());
+  const auto      q = Measure(mesh.GetPointer());
   EXPECT_TRUE(q.IsValidClosedSurface()) << Text(q);
   EXPECT_GE(q.qArea.mean, 0.97);
   EXPECT_GE(q.qAngle.mean, 0.80);
