@@ -21,6 +21,7 @@
 #include "MeshExtractionCLI.h"
 
 #include "itkCommand.h"
+#include "itkMeshExtractionWholeFile.h"
 
 #include <cmath>
 #include <filesystem>
@@ -62,19 +63,7 @@ RequireNotAnInput(const std::string & output, const std::vector<std::string> & i
 std::string
 Describe(const itk::ExceptionObject & e)
 {
-  std::string       text = e.GetDescription();
-  const std::string prefix = "ITK ERROR: ";
-  if (text.compare(0, prefix.size(), prefix) == 0)
-  {
-    text = text.substr(prefix.size());
-  }
-  const auto open = text.find("(0x");
-  const auto close = text.find("): ");
-  if (open != std::string::npos && close != std::string::npos && open < close && text.find(' ') > open)
-  {
-    text = text.substr(close + 3);
-  }
-  return text;
+  return ME::ExceptionReason(e);
 }
 
 // ------------------------------------------------------------------------------

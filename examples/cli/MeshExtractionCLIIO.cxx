@@ -27,6 +27,7 @@
 #include "itkImageIOFactory.h"
 #include "itkImageSeriesReader.h"
 #include "itkMeshExtractionMeshFile.h"
+#include "itkMeshExtractionWholeFile.h"
 #include "itkMeshFileReader.h"
 #include "itkMeshIOFactory.h"
 #include "itkMeshFileWriter.h"
@@ -35,7 +36,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -542,17 +542,6 @@ WriteWithITK(const ME::PolygonMesh & faces, const std::string & path)
   writer->Update();
 }
 
-/** A name beside `path`, with its extension (which names the format), for the file
- * being written: it replaces `path` only once it is whole. */
-std::string
-PartialFileName(const std::string & path)
-{
-  const std::filesystem::path p(path);
-  const auto                  tag = std::chrono::steady_clock::now().time_since_epoch().count();
-  return (p.parent_path() / ("." + p.stem().string() + ".partial-" + std::to_string(tag) + p.extension().string()))
-    .string();
-}
-
 /** Reads a file ITK's writer wrote back where the module reads its format: ITK does not
  * report a failed write, and a disk that filled up or a size limit leaves fewer points
  * or faces than were written. (The module's own writers check every write.) */
@@ -597,27 +586,7 @@ RequireWrittenWhole(const ME::PolygonMesh & faces, const std::string & written)
 void
 WriteWhole(const std::string & path, const std::function<void(const std::string & partial)> & write)
 {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  if (fs::exists(path, error) && !fs::is_regular_file(path, error))
-  {
-    itkGenericExceptionMacro("cannot write '" << path << "': it exists and is not a regular file");
-  }
-  const std::string partial = PartialFileName(path);
-  try
-  {
-    write(partial);
-    fs::rename(partial, path, error);
-    if (error)
-    {
-      itkGenericExceptionMacro("cannot rename the written file to it: " << error.message());
-    }
-  }
-  catch (const itk::ExceptionObject & e)
-  {
-    fs::remove(partial, error);
-    itkGenericExceptionMacro("cannot write '" << path << "': " << Describe(e));
-  }
+  ME::WriteWhole(path, write);
 }
 
 void
@@ -645,15 +614,7 @@ namespace
 void
 WriteFaces(const ME::PolygonMesh & faces, const std::string & path, const MeshWriteSettings & settings)
 {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  if (fs::exists(path, error) && !fs::is_regular_file(path, error))
-  {
-    itkGenericExceptionMacro("cannot write mesh '" << path << "': it exists and is not a regular file");
-  }
-  const std::string partial = PartialFileName(path);
-  try
-  {
+  ME::WriteWhole(path, [&](const std::string & partial) {
     // VTK legacy files stay ITK's, as every earlier version of the tool wrote them.
     const bool vtk = ME::MeshFileFormatFromFileName(path) == ME::MeshFileFormat::VTKLegacy;
     if (IsModuleFormat(path) && (!vtk || settings.moduleWritesVTK))
@@ -665,17 +626,7 @@ WriteFaces(const ME::PolygonMesh & faces, const std::string & path, const MeshWr
       WriteWithITK(faces, partial);
       RequireWrittenWhole(faces, partial);
     }
-    fs::rename(partial, path, error);
-    if (error)
-    {
-      itkGenericExceptionMacro("cannot rename the written file to it: " << error.message());
-    }
-  }
-  catch (const itk::ExceptionObject & e)
-  {
-    fs::remove(partial, error);
-    itkGenericExceptionMacro("cannot write mesh '" << path << "': " << Describe(e));
-  }
+  });
 }
 } // namespace
 
