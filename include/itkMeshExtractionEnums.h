@@ -143,6 +143,26 @@ public:
      * (an AffineTransform). */
     AlongAxes
   };
+
+  /** How SurfaceMeshFileWriter encodes a file. */
+  enum class MeshFileEncoding : std::uint8_t
+  {
+    /** The format's usual one: ASCII for VTK legacy, OBJ and OFF; binary for VTP, PLY
+     * and STL. */
+    Default = 0,
+    ASCII,
+    /** Not for OBJ and OFF, which are text formats. */
+    Binary
+  };
+
+  /** The VTK legacy file version SurfaceMeshFileWriter writes. */
+  enum class VTKLegacyVersion : std::uint8_t
+  {
+    /** POLYGONS with a count before each cell: read by every VTK and by ITK's mesh IO. */
+    V4_2 = 0,
+    /** OFFSETS and CONNECTIVITY arrays: VTK 9's default. */
+    V5_1
+  };
 };
 
 MeshExtraction_EXPORT std::ostream &
@@ -163,6 +183,10 @@ MeshExtraction_EXPORT std::ostream &
                       operator<<(std::ostream & out, MeshExtractionEnums::LandmarkDistension value);
 MeshExtraction_EXPORT std::ostream &
                       operator<<(std::ostream & out, MeshExtractionEnums::Correspondence value);
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & out, MeshExtractionEnums::MeshFileEncoding value);
+MeshExtraction_EXPORT std::ostream &
+                      operator<<(std::ostream & out, MeshExtractionEnums::VTKLegacyVersion value);
 
 } // namespace itk
 

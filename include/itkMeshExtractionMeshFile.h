@@ -216,10 +216,30 @@ FillMeshWithPolygons(const PolygonMesh & in, TMesh & mesh)
   }
 }
 
+/** \brief Fills an empty itk::Mesh with the polygons as they are, or an empty
+ * itk::QuadEdgeMesh with their triangles (TriangulatePolygonMesh), refused with the
+ * reasons, before any face is added, unless they are manifold and consistently
+ * oriented (RequireQuadEdgeMeshTriangles; `what` names the mesh in that message).
+ * \ingroup MeshExtraction
+ */
+template <typename TMesh>
+void
+FillSurfaceMesh(const PolygonMesh & polygons, TMesh & mesh, const std::string & what)
+{
+  if constexpr (detail::IsQuadEdgeMesh<TMesh>::value)
+  {
+    const IndexedTriangleMesh triangles = TriangulatePolygonMesh(polygons);
+    RequireQuadEdgeMeshTriangles(triangles, what);
+    FillMesh(triangles, mesh);
+  }
+  else
+  {
+    FillMeshWithPolygons(polygons, mesh);
+  }
+}
+
 /** \brief Reads a surface mesh file into an itk::Mesh (as polygons) or an
- * itk::QuadEdgeMesh (triangulated; refused with the reasons, before any face is
- * added, unless it is manifold and consistently oriented: see
- * RequireQuadEdgeMeshTriangles).
+ * itk::QuadEdgeMesh (triangulated; FillSurfaceMesh).
  *
  * Formats: those of MeshFileFormat. Coordinates are taken as they are (physical
  * millimetres for the module's meshes).
@@ -229,18 +249,8 @@ template <typename TMesh>
 typename TMesh::Pointer
 ReadSurfaceMeshFile(const std::string & fileName)
 {
-  const PolygonMesh polygons = ReadPolygonMeshFile(fileName);
-  auto              mesh = TMesh::New();
-  if constexpr (detail::IsQuadEdgeMesh<TMesh>::value)
-  {
-    const IndexedTriangleMesh triangles = TriangulatePolygonMesh(polygons);
-    RequireQuadEdgeMeshTriangles(triangles, "'" + fileName + "'");
-    FillMesh(triangles, *mesh);
-  }
-  else
-  {
-    FillMeshWithPolygons(polygons, *mesh);
-  }
+  auto mesh = TMesh::New();
+  FillSurfaceMesh(ReadPolygonMeshFile(fileName), *mesh, "'" + fileName + "'");
   return mesh;
 }
 

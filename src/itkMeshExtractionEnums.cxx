@@ -153,4 +153,32 @@ operator<<(std::ostream & out, MeshExtractionEnums::Correspondence value)
   }
   return out << "INVALID VALUE FOR itk::MeshExtractionEnums::Correspondence";
 }
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::MeshFileEncoding value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::MeshFileEncoding::Default:
+      return out << "itk::MeshExtractionEnums::MeshFileEncoding::Default";
+    case MeshExtractionEnums::MeshFileEncoding::ASCII:
+      return out << "itk::MeshExtractionEnums::MeshFileEncoding::ASCII";
+    case MeshExtractionEnums::MeshFileEncoding::Binary:
+      return out << "itk::MeshExtractionEnums::MeshFileEncoding::Binary";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::MeshFileEncoding";
+}
+
+std::ostream &
+operator<<(std::ostream & out, MeshExtractionEnums::VTKLegacyVersion value)
+{
+  switch (value)
+  {
+    case MeshExtractionEnums::VTKLegacyVersion::V4_2:
+      return out << "itk::MeshExtractionEnums::VTKLegacyVersion::V4_2";
+    case MeshExtractionEnums::VTKLegacyVersion::V5_1:
+      return out << "itk::MeshExtractionEnums::VTKLegacyVersion::V5_1";
+  }
+  return out << "INVALID VALUE FOR itk::MeshExtractionEnums::VTKLegacyVersion";
+}
 } // namespace itk
