@@ -81,6 +81,9 @@ ParallelForBlocks(std::size_t n, std::size_t blockSize, TFunction && f, unsigned
   MultiThreaderBase::Pointer threader = MultiThreaderBase::New();
   if (numberOfWorkUnits > 0)
   {
+    // TBB (PyPI's itk's default threader) bounds its threads by MaximumNumberOfThreads,
+    // not by the number of work units: both are set, so every threader honours it.
+    threader->SetMaximumNumberOfThreads(numberOfWorkUnits);
     threader->SetNumberOfWorkUnits(numberOfWorkUnits);
   }
   threader->ParallelizeArray(
