@@ -20,6 +20,7 @@
 
 #include "itkMeshExtractionMeshFileParsing.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cstdlib>
@@ -354,10 +355,12 @@ double
 DecodeBinaryValue(const DataType & type, const unsigned char * bytes, bool littleEndian)
 {
   unsigned char b[8];
-  std::memcpy(b, bytes, type.size);
+  // type.size is 1, 2, 4 or 8; the bound tells GCC's -O3 too (it warned of an overflow).
+  const std::size_t size = std::min<std::size_t>(type.size, sizeof(b));
+  std::memcpy(b, bytes, size);
   if (littleEndian != IsLittleEndian())
   {
-    std::reverse(b, b + type.size);
+    std::reverse(b, b + size);
   }
   auto as = [&b](auto value) {
     std::memcpy(&value, b, sizeof(value));

@@ -324,7 +324,12 @@ BuildPrincipalComponents(const std::vector<Shape> & shapes, double varianceFract
       data(r, i) -= model.mean[r];
     }
   }
+#if EIGEN_VERSION_AT_LEAST(3, 4, 90)
+  // ITK 6's Eigen takes the computation options as a template argument.
+  Eigen::BDCSVD<Eigen::MatrixXd, Eigen::ComputeThinU> svd(data);
+#else
   Eigen::BDCSVD<Eigen::MatrixXd> svd(data, Eigen::ComputeThinU);
+#endif
   const std::size_t              modes = m - 1; // centring leaves m - 1 directions
   std::vector<double>            variances;
   for (std::size_t k = 0; k < modes; ++k)

@@ -277,7 +277,8 @@ WriteAlignmentPicture(const ImageType *         fixed,
                       const std::string &       path)
 {
   itk::ContinuousIndex<double, 3> c;
-  fixed->TransformPhysicalPointToContinuousIndex(through.point, c);
+  // A landmark outside the image is fine: the slices are clamped to it below.
+  static_cast<void>(fixed->TransformPhysicalPointToContinuousIndex(through.point, c));
   itk::Index<3> centre;
   const auto &  region = fixed->GetBufferedRegion();
   for (unsigned int d = 0; d < 3; ++d)
