@@ -2,7 +2,7 @@
 # Configures and builds an ITK tree for MeshExtraction from a checkout of an ITK release
 # tag (v5.4.7 for the wheel; v5.4.7 or v6.0b02 for the C++ checks):
 #
-#   scripts/build-itk.sh [--no-wrapping] [--testing] ITK_SOURCE_DIR BUILD_DIR
+#   scripts/build-itk.sh [--no-wrapping] ITK_SOURCE_DIR BUILD_DIR
 #
 # With wrapping (the default) the tree has the settings of PyPI's itk 5.4.7 wheels that
 # matter for binary compatibility: static libraries (so the module's wrapping shares
@@ -13,7 +13,6 @@
 # enabled, and of the wrapping only what the module's wrapping reads is built (each
 # dependency's libraries and its SWIG metadata), not ITK's whole Python package.
 # --no-wrapping builds the same modules without the Python wrapping (for the C++ builds).
-# --testing also configures ITK's own BUILD_TESTING (not needed by the module).
 #
 # BUILD_DIR must be outside this repository; a kept BUILD_DIR (and ccache) makes a rerun
 # take minutes. The tools come from PyPI into a venv (scripts/python/wheel-build-
@@ -25,16 +24,14 @@ repo="$(dirname "$here")"
 source "$here/lib/python-tools.sh"
 
 usage() {
-  sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 wrapping=ON
-itk_testing=OFF
 args=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --no-wrapping) wrapping=OFF ;;
-    --testing) itk_testing=ON ;;
     -h | --help) usage ;;
     -*) echo "build-itk: unknown option $1" >&2; usage ;;
     *) args+=("$1") ;;
@@ -101,7 +98,7 @@ cmake -S "$itk_source" -B "$itk_build" -G Ninja \
   -DCMAKE_C_COMPILER_LAUNCHER:STRING=ccache \
   -DCMAKE_CXX_COMPILER_LAUNCHER:STRING=ccache \
   -DBUILD_SHARED_LIBS:BOOL=OFF \
-  -DBUILD_TESTING:BOOL="$itk_testing" \
+  -DBUILD_TESTING:BOOL=OFF \
   -DBUILD_EXAMPLES:BOOL=OFF \
   -DITK_BUILD_DEFAULT_MODULES:BOOL=OFF \
   -DModule_ITKTBB:BOOL=ON \

@@ -10,8 +10,7 @@
 # itk.meshextraction; no itk/__init__.py and no ITK shared library: it installs beside
 # PyPI's itk 5.4. auditwheel then bundles the one shared library it needs beyond the
 # manylinux set (oneTBB) and gives it the manylinux tag this machine's glibc allows.
-# The CMake build tree is kept under MESHEXTRACTION_CACHE (default ~/.cache/meshextraction)
-# so that a rebuild takes minutes.
+# The CMake build tree is kept in build-wheel/ so that a rebuild takes minutes.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(dirname "$here")"
@@ -32,8 +31,10 @@ export PATH="$tools/bin:$PATH"
 # The Python and castxml the ITK tree's wrapping was made with.
 python="$(grep '^Python3_EXECUTABLE:' "$itk_build/CMakeCache.txt" | cut -d= -f2)"
 castxml="$(grep '^CASTXML_EXECUTABLE:' "$itk_build/CMakeCache.txt" | cut -d= -f2)"
-# One build tree per checkout (CMake refuses a tree made from another source folder).
-build_dir="$(meshextraction_cache_dir)/wheel-build/$(echo "$repo" | md5sum | cut -c1-8)"
+# The build tree is the checkout's own (build-wheel/, ignored by git); with ccache's base
+# folder at the checkout, another clone of the same sources finds the compiled objects.
+build_dir="$repo/build-wheel"
+export CCACHE_BASEDIR="$repo"
 raw="$build_dir/raw"
 rm -rf "$raw"
 mkdir -p "$raw" "$repo/dist"
