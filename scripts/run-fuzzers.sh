@@ -31,7 +31,13 @@ while [ $# -gt 0 ]; do
 done
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
 cxxflags="$flags -include $PWD/fuzz/ItkCompilerDetectionForClang.h -Wno-builtin-macro-redefined"
-CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+# ccache, with its base folder at the checkout, as scripts/build.sh uses it.
+launcher=()
+if command -v ccache > /dev/null; then
+  export CCACHE_BASEDIR="$PWD"
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
+CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" \
   -DMESHEXTRACTION_BUILD_FUZZERS=ON -DBUILD_TESTING=OFF \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$cxxflags" > "$build-configure.log" 2>&1 ||
   { cat "$build-configure.log"; exit 1; }
