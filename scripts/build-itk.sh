@@ -92,6 +92,11 @@ if [ "$wrapping" = ON ]; then
 fi
 
 start=$(date +%s)
+# ITK's configure rewrites the castxml flags file even when its contents are the same,
+# and every castxml run of the wrapping depends on it: keep its time when nothing
+# changed, or a rerun would remake all the wrapping metadata (a quarter of an hour).
+castxml_inc="$itk_build/Wrapping/castxml_inputs/.castxml.inc"
+[ -f "$castxml_inc" ] && cp -p "$castxml_inc" "$castxml_inc.before"
 cmake -S "$itk_source" -B "$itk_build" -G Ninja \
   -DCMAKE_MAKE_PROGRAM:FILEPATH="$tools/bin/ninja" \
   -DCMAKE_BUILD_TYPE:STRING=Release \
@@ -105,6 +110,10 @@ cmake -S "$itk_source" -B "$itk_build" -G Ninja \
   "${module_flags[@]}" \
   "${wrap_flags[@]}" \
   > "$itk_build/build-itk-configure.log"
+if [ -f "$castxml_inc.before" ]; then
+  if cmp -s "$castxml_inc" "$castxml_inc.before"; then touch -r "$castxml_inc.before" "$castxml_inc"; fi
+  rm -f "$castxml_inc.before"
+fi
 echo "build-itk: configured $itk_build (log: build-itk-configure.log)"
 
 # What the module builds against: every library and tool of the enabled modules and,
