@@ -25,6 +25,8 @@
 #include "itkQuadrilateralCell.h"
 
 #include <cstdint>
+#include <limits>
+#include <type_traits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -216,16 +218,29 @@ FillMeshWithPolygons(const PolygonMesh & in, TMesh & mesh)
   }
 }
 
+/** An itk::ExceptionObject naming `what`, the point and the value if a coordinate's
+ * magnitude exceeds `limit` (the largest value of the mesh's coordinate type, named
+ * `typeName`): such a point would become infinite there. */
+MeshExtraction_EXPORT void
+RequireCoordinatesWithin(const PolygonMesh & polygons, double limit, const char * typeName, const std::string & what);
+
 /** \brief Fills an empty itk::Mesh with the polygons as they are, or an empty
  * itk::QuadEdgeMesh with their triangles (TriangulatePolygonMesh), refused with the
  * reasons, before any face is added, unless they are manifold and consistently
  * oriented (RequireQuadEdgeMeshTriangles; `what` names the mesh in that message).
+ * Coordinates beyond the range of the mesh's coordinate type (1e40 for float points)
+ * are refused too (RequireCoordinatesWithin).
  * \ingroup MeshExtraction
  */
 template <typename TMesh>
 void
 FillSurfaceMesh(const PolygonMesh & polygons, TMesh & mesh, const std::string & what)
 {
+  using CoordinateType = typename TMesh::PointType::ValueType;
+  RequireCoordinatesWithin(polygons,
+                           static_cast<double>(std::numeric_limits<CoordinateType>::max()),
+                           std::is_same_v<CoordinateType, float> ? "float" : "double",
+                           what);
   if constexpr (detail::IsQuadEdgeMesh<TMesh>::value)
   {
     const IndexedTriangleMesh triangles = TriangulatePolygonMesh(polygons);

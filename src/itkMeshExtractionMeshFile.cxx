@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <charconv>
 #include <cstdlib>
 
@@ -155,6 +156,23 @@ PolygonMesh::AddPolygon(const std::uint32_t * corners, std::size_t numberOfCorne
 {
   polygonIndices.insert(polygonIndices.end(), corners, corners + numberOfCorners);
   polygonOffsets.push_back(static_cast<std::uint32_t>(polygonIndices.size()));
+}
+
+void
+RequireCoordinatesWithin(const PolygonMesh & polygons, double limit, const char * typeName, const std::string & what)
+{
+  for (std::size_t i = 0; i < polygons.points.size(); ++i)
+  {
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      const double value = polygons.points[i][d];
+      if (!(std::abs(value) <= limit))
+      {
+        itkGenericExceptionMacro(<< what << ": point " << i << " has the coordinate " << value
+                                 << ", beyond the range of " << typeName << " coordinates (+-" << limit << ")");
+      }
+    }
+  }
 }
 
 IndexedTriangleMesh

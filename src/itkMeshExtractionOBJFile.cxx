@@ -115,8 +115,10 @@ ReadFace(Cursor &                              cursor,
   }
   if (polygon.size() < 3)
   {
-    ++mesh.numberOfIgnoredCells;
-    return;
+    // A face of fewer than three corners is no surface ('l' and 'p' lines are the
+    // format's lines and points).
+    cursor.Fail("line " + std::to_string(lineNumber) + ": face " + std::to_string(mesh.NumberOfPolygons()) + " has " +
+                std::to_string(polygon.size()) + " vertices; a face needs at least 3");
   }
   mesh.AddPolygon(polygon.data(), polygon.size());
 }

@@ -136,8 +136,8 @@ ReadOFFFile(const std::string & fileName)
     }
     if (corners.size() < 3)
     {
-      ++mesh.numberOfIgnoredCells;
-      continue;
+      cursor.Fail("face " + std::to_string(f) + " has " + std::to_string(corners.size()) +
+                  " vertices; a face needs at least 3");
     }
     mesh.AddPolygon(corners.data(), corners.size());
   }

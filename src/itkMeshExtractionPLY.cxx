@@ -414,13 +414,16 @@ ReadFaces(ValueReader & reader, const PLYElement & element, PolygonMesh & mesh, 
         }
         corners.push_back(static_cast<std::uint32_t>(value));
       }
-      if (isIndices && corners.size() >= 3)
+      if (isIndices && corners.size() < 3)
+      {
+        // PLY's lines are an element of their own ("edge"); a face is a surface's.
+        Fail(fileName,
+             "face " + std::to_string(f) + " has " + std::to_string(corners.size()) +
+               " vertices; a face needs at least 3");
+      }
+      if (isIndices)
       {
         mesh.AddPolygon(corners.data(), corners.size());
-      }
-      else if (isIndices)
-      {
-        ++mesh.numberOfIgnoredCells;
       }
     }
   }

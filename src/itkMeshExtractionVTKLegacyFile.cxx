@@ -246,10 +246,17 @@ AddCell(LegacyReader & r, CellKind kind, const double * values, std::size_t n, s
     const auto   index = std::abs(v) < 9e18 ? static_cast<std::int64_t>(v) : std::int64_t{ -1 };
     corners[k] = CheckedIndex(r.cursor, index, r.mesh.points.size(), "cell " + std::to_string(cell));
   }
-  if (kind == CellKind::Ignored || n < 3)
+  if (kind == CellKind::Ignored)
   {
     ++r.mesh.numberOfIgnoredCells;
     return;
+  }
+  if (n < 3)
+  {
+    // VERTICES and LINES are the format's points and lines; a polygon or strip of
+    // fewer than three corners is a broken surface.
+    r.cursor.Fail(std::string(kind == CellKind::Polygons ? "polygon " : "strip ") + std::to_string(cell) + " has " +
+                  std::to_string(n) + " vertices; it needs at least 3");
   }
   if (kind == CellKind::Polygons)
   {

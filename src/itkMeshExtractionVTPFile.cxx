@@ -577,6 +577,13 @@ AddCells(Cursor &          cursor,
                         CheckedIndex(cursor, index, piece.numberOfPoints, std::string(name) + ' ' + std::to_string(c)));
     }
     start = offsets[c];
+    if (corners.size() < 3)
+    {
+      // Verts and Lines are the format's points and lines; a polygon or strip of fewer
+      // than three corners is a broken surface.
+      cursor.Fail(std::string(name) + ' ' + std::to_string(c) + " has " + std::to_string(corners.size()) +
+                  " vertices; it needs at least 3");
+    }
     for (std::size_t i = 0; kind == 0 && i + 2 < corners.size(); ++i)
     {
       const std::uint32_t t[3] = { corners[i + (i % 2)], corners[i + 1 - (i % 2)], corners[i + 2] };
@@ -585,13 +592,9 @@ AddCells(Cursor &          cursor,
         mesh.AddPolygon(t, 3);
       }
     }
-    if (kind == 1 && corners.size() >= 3)
+    if (kind == 1)
     {
       mesh.AddPolygon(corners.data(), corners.size());
-    }
-    else if (kind == 1)
-    {
-      ++mesh.numberOfIgnoredCells;
     }
   }
 }

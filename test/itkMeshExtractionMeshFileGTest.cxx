@@ -24,6 +24,7 @@
 
 #include "itkMeshExtractionMeshFile.h"
 #include "itkMeshExtractionTestHelpers.h"
+#include "itkQuadEdgeMesh.h"
 #include "itkSurfaceNetsImageToMeshFilter.h"
 
 #include <gtest/gtest.h>
@@ -431,6 +432,61 @@ TEST(MeshFile, RefusesNonFiniteCoordinates)
                       "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n")
               .find("not a finite number"),
             std::string::npos);
+}
+
+TEST(MeshFile, RefusesFacesOfFewerThanThreeVertices)
+{
+  // Issue 48, case 5: they were dropped without a word, and the rest called valid.
+  const std::string octahedronPoints = "1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n";
+  EXPECT_NE(ReadError("short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n")
+              .find("face 1 has 2 vertices; a face needs at least 3"),
+            std::string::npos);
+  EXPECT_NE(ReadError("empty-face.off", "OFF\n6 2 0\n" + octahedronPoints + "3 0 2 4\n0\n")
+              .find("face 1 has 0 vertices; a face needs at least 3"),
+            std::string::npos);
+  EXPECT_NE(ReadError("short.ply",
+                      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n" +
+                        octahedronPoints + "1 3\n3 0 2 4\n")
+              .find("face 0 has 1 vertices; a face needs at least 3"),
+            std::string::npos);
+  EXPECT_NE(ReadError("short.vtk",
+                      "# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\nPOINTS 6 double\n" + octahedronPoints +
+                        "POLYGONS 2 7\n3 0 2 4\n2 0 1\n")
+              .find("polygon 1 has 2 vertices; it needs at least 3"),
+            std::string::npos);
+  const std::string vtp = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" byte_order=\"LittleEndian\">\n"
+                          "<PolyData>\n<Piece NumberOfPoints=\"3\" NumberOfPolys=\"2\">\n"
+                          "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
+                          "0 0 0 1 0 0 0 1 0</DataArray></Points>\n<Polys>"
+                          "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 0 1</DataArray>"
+                          "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3 5</DataArray></Polys>\n"
+                          "</Piece>\n</PolyData>\n</VTKFile>\n";
+  EXPECT_NE(ReadError("short.vtp", vtp).find("polygon 1 has 2 vertices; it needs at least 3"), std::string::npos);
+  // The format's own points and lines are still counted, not refused.
+  EXPECT_EQ(ME::ReadPolygonMeshFile(WriteText("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\np 3\n"))
+              .numberOfIgnoredCells,
+            2u);
+}
+
+TEST(MeshFile, RefusesCoordinatesBeyondTheMeshCoordinateType)
+{
+  // Issue 48, case 1: x = 1e40 became an infinity in float points, and the rendering
+  // crashed on it.
+  const std::string path = WriteText("far.obj",
+                                     "v 1e40 0 0\nv 0 1 0\nv 0 0 1\nv -1 -1 -1\n"
+                                     "f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n");
+  using FloatMesh = itk::Mesh<double, 3, itk::DefaultStaticMeshTraits<double, 3, 3, float, float>>;
+  using DoubleMesh = itk::Mesh<double, 3, itk::DefaultStaticMeshTraits<double, 3, 3, double, double>>;
+  const std::string message = ExceptionDescription([&path] { ME::ReadSurfaceMeshFile<FloatMesh>(path); });
+  EXPECT_NE(message.find("point 0 has the coordinate 1e+40, beyond the range of float coordinates"), std::string::npos)
+    << message;
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(ExceptionDescription([&path] {
+              ME::ReadSurfaceMeshFile<itk::QuadEdgeMesh<double, 3>>(path);
+            }).find("beyond the range of float coordinates"),
+            std::string::npos);
+  EXPECT_EQ(ME::ReadSurfaceMeshFile<DoubleMesh>(path)->GetPoint(0)[0], 1e40);
 }
 
 TEST(MeshFile, RefusesIndicesOutOfRange)
