@@ -17,13 +17,17 @@
  *=========================================================================*/
 #include "itkMeshExtractionShapeStatistics.h"
 #include "itkMacro.h"
+#include "itkMeshExtractionWholeFile.h"
 #include "itk_H5Cpp.h"
 #include "itk_eigen.h"
 #include ITK_EIGEN(Dense)
 #include ITK_EIGEN(SVD)
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <fstream>
+#include <new>
 
 namespace itk
 {
@@ -460,16 +464,23 @@ WriteRepresenter(H5::H5File &                         file,
 }
 } // namespace
 
-void
-WriteStatismoModel(const std::string &                  fileName,
-                   const PrincipalComponentModel &      model,
-                   const std::vector<TriangleIndices> & triangles,
-                   const std::string &                  builderInfo)
+namespace
 {
-  try
+/** The model's HDF5 file, made in memory (HDF5's core driver without a backing store):
+ * HDF5 then never writes to the disk itself, where a failing write (a full disk, a size
+ * limit) left a truncated file and a library that crashed at exit. */
+std::vector<char>
+MakeStatismoFileImage(const PrincipalComponentModel &      model,
+                      const std::vector<TriangleIndices> & triangles,
+                      const std::string &                  builderInfo)
+{
+  H5::FileAccPropList access;
+  if (H5Pset_fapl_core(access.getId(), 1 << 20, false) < 0)
   {
-    H5::Exception::dontPrint();
-    H5::H5File file(fileName, H5F_ACC_TRUNC);
+    throw H5::FileIException("H5Pset_fapl_core", "cannot use HDF5's in-memory driver");
+  }
+  H5::H5File file("statismo-model-in-memory.h5", H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, access);
+  {
     WriteModelGroup(file, model);
     WriteRepresenter(file, model, triangles);
     H5::Group info = file.createGroup("/modelinfo");
@@ -484,28 +495,84 @@ WriteStatismoModel(const std::string &                  fileName,
     WriteInteger(version, "majorVersion", 0);
     WriteInteger(version, "minorVersion", 9);
   }
+  file.flush(H5F_SCOPE_GLOBAL);
+  const ssize_t     size = H5Fget_file_image(file.getId(), nullptr, 0);
+  std::vector<char> image(size > 0 ? static_cast<std::size_t>(size) : 0);
+  if (size <= 0 || H5Fget_file_image(file.getId(), image.data(), image.size()) != size)
+  {
+    throw H5::FileIException("H5Fget_file_image", "cannot take the file's image from memory");
+  }
+  file.close();
+  return image;
+}
+} // namespace
+
+void
+WriteStatismoModel(const std::string &                  fileName,
+                   const PrincipalComponentModel &      model,
+                   const std::vector<TriangleIndices> & triangles,
+                   const std::string &                  builderInfo)
+{
+  std::vector<char> image;
+  try
+  {
+    H5::Exception::dontPrint();
+    image = MakeStatismoFileImage(model, triangles, builderInfo);
+  }
   catch (const H5::Exception & e)
   {
     itkGenericExceptionMacro(<< "Cannot write the shape model " << fileName << ": " << e.getDetailMsg());
+  }
+  std::ofstream out(fileName, std::ios::binary | std::ios::trunc);
+  out.write(image.data(), static_cast<std::streamsize>(image.size()));
+  out.close();
+  if (!out)
+  {
+    itkGenericExceptionMacro(<< "Cannot write the shape model " << fileName << ": writing its " << image.size()
+                             << " bytes failed (a full disk or a size limit?)");
   }
 }
 
 namespace
 {
-std::vector<float>
-ReadFloats(H5::H5File & file, const std::string & path, std::vector<hsize_t> & dimensions)
+/** The number of values of a dataset, refused (naming it) beyond `limit`: the sizes
+ * come from the file, and a corrupt one must not ask for any amount of memory. */
+hsize_t
+CheckedCount(const H5::DataSpace & space, const std::string & path, hsize_t limit, std::vector<hsize_t> & dimensions)
 {
-  H5::DataSet   dataset = file.openDataSet(path);
-  H5::DataSpace space = dataset.getSpace();
-  dimensions.assign(static_cast<std::size_t>(space.getSimpleExtentNdims()), 0);
+  const int rank = space.getSimpleExtentNdims();
+  if (rank < 0 || rank > 2)
+  {
+    itkGenericExceptionMacro(<< path << " has " << rank << " dimensions; the model's datasets have 1 or 2");
+  }
+  dimensions.assign(static_cast<std::size_t>(rank), 0);
   space.getSimpleExtentDims(dimensions.data());
   hsize_t count = 1;
   for (hsize_t d : dimensions)
   {
+    if (d > limit || (d > 0 && count > limit / d))
+    {
+      itkGenericExceptionMacro(<< path << " claims more values than the file can hold (a corrupt file?)");
+    }
     count *= d;
   }
+  return count;
+}
+
+std::vector<float>
+ReadFloats(H5::H5File & file, const std::string & path, std::vector<hsize_t> & dimensions, hsize_t limit)
+{
+  H5::DataSet        dataset = file.openDataSet(path);
+  const hsize_t      count = CheckedCount(dataset.getSpace(), path, limit, dimensions);
   std::vector<float> values(count);
   dataset.read(values.data(), H5::PredType::NATIVE_FLOAT);
+  for (hsize_t i = 0; i < count; ++i)
+  {
+    if (!std::isfinite(values[i]))
+    {
+      itkGenericExceptionMacro(<< path << " holds " << values[i] << " (value " << i << "): a corrupt file?");
+    }
+  }
   return values;
 }
 } // namespace
@@ -517,13 +584,23 @@ ReadStatismoModel(const std::string & fileName, std::vector<TriangleIndices> & t
   try
   {
     H5::Exception::dontPrint();
-    H5::H5File           file(fileName, H5F_ACC_RDONLY);
+    H5::H5File file(fileName, H5F_ACC_RDONLY);
+    // No dataset holds more values than the file has bytes (the module writes them
+    // uncompressed; a compressed one of statismo's is allowed a generous ratio).
+    const hsize_t        limit = std::max<hsize_t>(1u << 20, 64 * file.getFileSize());
     std::vector<hsize_t> dims;
-    const auto           mean = ReadFloats(file, "/model/mean", dims);
+    const auto           mean = ReadFloats(file, "/model/mean", dims, limit);
     model.mean.assign(mean.begin(), mean.end());
-    const auto variances = ReadFloats(file, "/model/pcaVariance", dims);
+    const auto variances = ReadFloats(file, "/model/pcaVariance", dims, limit);
     model.variances.assign(variances.begin(), variances.end());
-    const auto        basis = ReadFloats(file, "/model/pcaBasis", dims);
+    for (const double v : model.variances)
+    {
+      if (v < 0.0)
+      {
+        itkGenericExceptionMacro(<< "/model/pcaVariance holds a negative variance " << v << " (a corrupt file?)");
+      }
+    }
+    const auto        basis = ReadFloats(file, "/model/pcaBasis", dims, limit);
     const std::size_t k = dims.size() == 2 ? dims[1] : 0;
     if (dims.size() != 2 || dims[0] != model.mean.size() || k != model.variances.size())
     {
@@ -537,21 +614,25 @@ ReadStatismoModel(const std::string & fileName, std::vector<TriangleIndices> & t
         model.basis[c][r] = basis[r * k + c];
       }
     }
-    model.noiseVariance = ReadFloats(file, "/model/noiseVariance", dims).at(0);
+    const auto noise = ReadFloats(file, "/model/noiseVariance", dims, limit);
+    if (noise.empty())
+    {
+      itkGenericExceptionMacro(<< "/model/noiseVariance is empty");
+    }
+    model.noiseVariance = noise[0];
     for (double v : model.variances)
     {
       model.totalVariance += v;
     }
-    H5::DataSet   cells = file.openDataSet("/representer/cells");
-    H5::DataSpace space = cells.getSpace();
-    hsize_t       cellDims[2] = { 0, 0 };
-    if (space.getSimpleExtentNdims() != 2 || (space.getSimpleExtentDims(cellDims), cellDims[0] != 3))
+    H5::DataSet cells = file.openDataSet("/representer/cells");
+    CheckedCount(cells.getSpace(), "/representer/cells", limit, dims);
+    if (dims.size() != 2 || dims[0] != 3)
     {
       itkGenericExceptionMacro(<< "/representer/cells is not 3 x (number of triangles)");
     }
-    std::vector<std::uint32_t> values(3 * cellDims[1]);
+    std::vector<std::uint32_t> values(3 * dims[1]);
     cells.read(values.data(), H5::PredType::NATIVE_UINT32);
-    triangles.resize(cellDims[1]);
+    triangles.resize(dims[1]);
     for (std::size_t f = 0; f < triangles.size(); ++f)
     {
       for (unsigned int d = 0; d < 3; ++d)
@@ -570,7 +651,12 @@ ReadStatismoModel(const std::string & fileName, std::vector<TriangleIndices> & t
   }
   catch (const itk::ExceptionObject & e)
   {
-    itkGenericExceptionMacro(<< "Cannot read the shape model " << fileName << ": " << e.GetDescription());
+    itkGenericExceptionMacro(<< "Cannot read the shape model " << fileName << ": " << ExceptionReason(e));
+  }
+  catch (const std::bad_alloc &)
+  {
+    itkGenericExceptionMacro(<< "Cannot read the shape model " << fileName
+                             << ": its sizes ask for more memory than there is (a corrupt file?)");
   }
   return model;
 }
