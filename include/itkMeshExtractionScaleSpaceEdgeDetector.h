@@ -85,6 +85,10 @@ ResolveMinimumScale(const TSpacing & spacing, double requested)
     { static_cast<double>(spacing[0]), static_cast<double>(spacing[1]), static_cast<double>(spacing[2]) });
 }
 
+/** The most scales (blurred images) one edge detection may use: with its capture range
+ * and scales per octave, a bound on the minimum scale. */
+constexpr unsigned int MaximumNumberOfEdgeDetectionScales = 128;
+
 /** What is wrong with the parameters of a step (empty if nothing):
  * ScaleSpaceEdgeDetector::CheckParameters. */
 MeshExtraction_EXPORT std::string

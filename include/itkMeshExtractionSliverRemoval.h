@@ -54,7 +54,9 @@ struct SliverRemovalParameters
    * nodes relaxed along the surface and projected onto it (Botsch and Kobbelt's
    * isotropic remeshing), each change under the same guards as the sliver passes. */
   double targetEdgeLength{ 0.0 };
-  /** Rounds of split, collapse, swap and relaxation in the isotropic remeshing. */
+  /** Rounds of split, collapse, swap and relaxation in the isotropic remeshing (and as
+   * many of quality swaps and relaxation), at most: each kind stops at a round that
+   * changes nothing. */
   unsigned int remeshingIterations{ 8 };
 };
 
@@ -71,6 +73,8 @@ struct SliverRemovalResult
   std::size_t  numberOfRemeshingSwaps{ 0 };     ///< of numberOfSwaps, those of the isotropic remeshing
   std::size_t numberOfRelaxedNodes{ 0 }; ///< node moves of the remeshing's relaxation (and kept), summed over its steps
   std::size_t numberOfRelaxationUndone{ 0 }; ///< relaxation moves taken back by the guards
+  /** Rounds the remeshing ran, of both kinds: they stop early at the first that changes nothing. */
+  unsigned int numberOfRemeshingRounds{ 0 };
 };
 
 /** Projects a point (continuous index) onto the surface the mesh approximates; false

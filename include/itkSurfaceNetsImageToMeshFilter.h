@@ -282,11 +282,13 @@ public:
   itkGetConstMacro(HighQualityRemeshing, bool);
   itkBooleanMacro(HighQualityRemeshing);
   /** The target edge length (mm) of HighQualityRemeshing; 0 (the default) means the
-   * mean of the input's spacings. */
+   * mean of the input's spacings. Lengths below MinimumTargetEdgeLengthInVoxels of the
+   * smallest spacing are an exception at Update(). */
   itkSetMacro(HighQualityTargetEdgeLength, double);
   itkGetConstMacro(HighQualityTargetEdgeLength, double);
   /** HighQualityRemeshing's rounds of splits, collapses, swaps and relaxation
-   * (default 8). */
+   * (default 8), at most: they stop at a round that changes nothing
+   * (GetNumberOfRemeshingRounds). */
   itkSetMacro(HighQualityRemeshingIterations, unsigned int);
   itkGetConstMacro(HighQualityRemeshingIterations, unsigned int);
   /** Undo relaxation where faces would cross (default on): nodes of crossing
@@ -351,6 +353,13 @@ public:
   itkGetConstMacro(NumberOfSplits, SizeValueType);
   itkGetConstMacro(NumberOfRemeshingCollapses, SizeValueType);
   itkGetConstMacro(NumberOfRemeshingSwaps, SizeValueType);
+  /** Rounds the remeshing ran (both kinds, at most twice HighQualityRemeshingIterations):
+   * each kind stops at the first round that changes nothing. */
+  itkGetConstMacro(NumberOfRemeshingRounds, unsigned int);
+
+  /** The smallest HighQualityTargetEdgeLength, as a fraction of the smallest voxel
+   * spacing: shorter edges would resolve nothing more of the image. */
+  static constexpr double MinimumTargetEdgeLengthInVoxels = 0.25;
 
   /** After Update(): the net itself (nodes in continuous index space, quads, links). */
   const MeshExtraction::SurfaceNet &
@@ -570,6 +579,7 @@ private:
   SizeValueType m_NumberOfSplits{ 0 };
   SizeValueType m_NumberOfRemeshingCollapses{ 0 };
   SizeValueType m_NumberOfRemeshingSwaps{ 0 };
+  unsigned int  m_NumberOfRemeshingRounds{ 0 };
 
   MeshExtraction::SurfaceNet m_Net;
 };

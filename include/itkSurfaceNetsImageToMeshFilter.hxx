@@ -892,6 +892,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RunHighQual
   m_NumberOfSplits = 0;
   m_NumberOfRemeshingCollapses = 0;
   m_NumberOfRemeshingSwaps = 0;
+  m_NumberOfRemeshingRounds = 0;
   if (m_HighQualitySliverRemoval || m_HighQualityRemeshing)
   {
     const std::size_t numberOfNodes = m_Net.positions.size();
@@ -986,6 +987,21 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSlive
       }
       parameters.targetEdgeLength = sum / 3.0;
     }
+    // Edges far shorter than the voxels resolve nothing more of the image: a bound on
+    // how much the mesh can grow (about 16-fold in triangles at the smallest target).
+    double smallestSpacing = std::numeric_limits<double>::infinity();
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      smallestSpacing = std::min(smallestSpacing, std::sqrt(M[0][c] * M[0][c] + M[1][c] * M[1][c] + M[2][c] * M[2][c]));
+    }
+    if (parameters.targetEdgeLength < MinimumTargetEdgeLengthInVoxels * smallestSpacing)
+    {
+      itkExceptionMacro("HighQualityTargetEdgeLength "
+                        << parameters.targetEdgeLength << " mm is below " << MinimumTargetEdgeLengthInVoxels
+                        << " of the smallest voxel spacing (" << smallestSpacing
+                        << " mm): the mesh would grow without resolving more; use at least "
+                        << MinimumTargetEdgeLengthInVoxels * smallestSpacing << " mm.");
+    }
   }
   SliverRemovalResult result;
   if (m_LabelSurface)
@@ -1016,6 +1032,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::RemoveSlive
   m_NumberOfSplits = result.numberOfSplits;
   m_NumberOfRemeshingCollapses = result.numberOfRemeshingCollapses;
   m_NumberOfRemeshingSwaps = result.numberOfRemeshingSwaps;
+  m_NumberOfRemeshingRounds = result.numberOfRemeshingRounds;
 }
 
 template <typename TInputImage, typename TOutputMesh, typename TLabelImage>
@@ -1126,6 +1143,7 @@ SurfaceNetsImageToMeshFilter<TInputImage, TOutputMesh, TLabelImage>::PrintSelf(s
   os << indent << "HighQualityRemeshing: " << m_HighQualityRemeshing << '\n';
   os << indent << "HighQualityTargetEdgeLength: " << m_HighQualityTargetEdgeLength << '\n';
   os << indent << "HighQualityRemeshingIterations: " << m_HighQualityRemeshingIterations << '\n';
+  os << indent << "NumberOfRemeshingRounds: " << m_NumberOfRemeshingRounds << '\n';
   os << indent << "MinimumComponentVolume: " << m_MinimumComponentVolume << '\n';
   os << indent << "ResampleToIsotropicVoxels: " << m_ResampleToIsotropicVoxels << '\n';
   os << indent << "LabelSurfaceSigma: " << m_LabelSurfaceSigma << '\n';

@@ -403,6 +403,13 @@ CoordinatesOf(const JSONValue * array, const std::string & id, const std::string
       itkGenericExceptionMacro(<< fileName << ": landmark \"" << id << "\" has a coordinate that is not a finite "
                                << "number.");
     }
+    // Beyond this, the distances and products the matching computes lose every digit
+    // of the landmarks' differences (or overflow).
+    if (!(std::abs(c.number) <= 1e9))
+    {
+      itkGenericExceptionMacro(<< fileName << ": landmark \"" << id << "\" has the coordinate " << c.number
+                               << ", beyond +-1e9 mm.");
+    }
     p[d] = c.number;
   }
   return p;

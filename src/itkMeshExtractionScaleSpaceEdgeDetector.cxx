@@ -43,6 +43,16 @@ DescribeInvalidEdgeDetectionParameters(const ScaleSpaceEdgeDetectionParameters &
   {
     s << "NumberOfScalesPerOctave must be >= 1, got 0";
   }
+  else if (const double scales = p.minimumScale > 0.0 && p.maximumDeviation > p.minimumScale
+                                   ? 1.0 + p.scalesPerOctave * std::log2(p.maximumDeviation / p.minimumScale)
+                                   : 1.0;
+           scales > MaximumNumberOfEdgeDetectionScales)
+  {
+    // Each scale is a blurred copy of the image: a bound on the work one setting can ask for.
+    s << "the scales from MaximumDeviation " << p.maximumDeviation << " mm down to MinimumScale " << p.minimumScale
+      << " mm at " << p.scalesPerOctave << " per octave would be " << std::ceil(scales) << " blurred images; at most "
+      << MaximumNumberOfEdgeDetectionScales << " (raise MinimumScale or lower NumberOfScalesPerOctave)";
+  }
   else if (!(p.degenerateQAreaTolerance >= 0.0 && p.degenerateQAreaTolerance < 1.0))
   {
     s << "DegenerateQAreaTolerance must be in [0, 1), got " << p.degenerateQAreaTolerance;

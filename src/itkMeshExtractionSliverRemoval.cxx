@@ -1461,23 +1461,44 @@ private:
     const double settledMove = 0.01 * targetEdgeLength;
     // One pass of each kind per round: what the locks of a pass left is made in the
     // next round, after the relaxation, where the edges' lengths have changed anyway.
+    // A round that changes nothing leaves the mesh where the next one starts, so the
+    // rounds stop there (a fixed point: the result is the same as with all of them).
     for (unsigned int iteration = 0; iteration < m_Parameters.remeshingIterations; ++iteration)
     {
-      this->SplitLongEdges(longest);
-      this->CollapseShortEdges(shortest, longest);
-      this->SwapTowardValenceSix();
+      std::size_t changes = this->SplitLongEdges(longest);
+      changes += this->CollapseShortEdges(shortest, longest);
+      changes += this->SwapTowardValenceSix();
       ++m_Stamp;
-      this->Relax(settledMove);
+      changes += this->RelaxAndCount(settledMove);
+      ++m_Result.numberOfRemeshingRounds;
+      if (changes == 0)
+      {
+        break;
+      }
     }
     // Then the shapes alone: swaps that raise the smaller q_angle of an edge's two
     // triangles, and relaxation, in turn.
     for (unsigned int step = 0; step < m_Parameters.remeshingIterations; ++step)
     {
-      this->SwapTowardQuality();
+      std::size_t changes = this->SwapTowardQuality();
       ++m_Stamp;
-      this->Relax(settledMove);
+      changes += this->RelaxAndCount(settledMove);
+      ++m_Result.numberOfRemeshingRounds;
+      if (changes == 0)
+      {
+        break;
+      }
     }
     m_Remeshing = false;
+  }
+
+  /** Relax, returning the nodes it moved (and kept). */
+  std::size_t
+  RelaxAndCount(double settledMove)
+  {
+    const std::size_t before = m_Result.numberOfRelaxedNodes;
+    this->Relax(settledMove);
+    return m_Result.numberOfRelaxedNodes - before;
   }
 
   /** Swaps that raise the smaller q_angle of the edge's two triangles. */
