@@ -45,6 +45,7 @@
 #include <chrono>
 #include <functional>
 #include <iosfwd>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -72,12 +73,58 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/** The values a numeric option accepts (every number of a list option): printed by
+ * --help and checked when the command line is parsed, so that a value out of range is
+ * a usage error naming the range, never a setting a command quietly adjusts. */
+struct OptionRange
+{
+  double minimum{ -std::numeric_limits<double>::infinity() };
+  double maximum{ std::numeric_limits<double>::infinity() };
+  bool   minimumExcluded{ false };
+  bool   maximumExcluded{ false };
+
+  /** [low, high] */
+  static OptionRange
+  Between(double low, double high);
+  /** (low, high) */
+  static OptionRange
+  Inside(double low, double high);
+  /** (low, high] */
+  static OptionRange
+  AboveUpTo(double low, double high);
+  /** Every finite number. */
+  static OptionRange
+  Any();
+
+  bool
+  IsSet() const;
+  bool
+  Contains(double value) const;
+  /** "[0, 1]", "(0, 1]", "any number" */
+  std::string
+  Text() const;
+};
+
 struct OptionSpec
 {
   std::string name;      ///< without the leading "--"
   std::string valueName; ///< empty for a flag
   std::string help;
   std::string defaultValue;
+  OptionRange range; ///< for numeric options
+
+  OptionSpec() = default;
+  OptionSpec(std::string optionName,
+             std::string optionValueName,
+             std::string optionHelp,
+             std::string optionDefault,
+             OptionRange optionRange = OptionRange())
+      : name(std::move(optionName))
+      , valueName(std::move(optionValueName))
+      , help(std::move(optionHelp))
+      , defaultValue(std::move(optionDefault))
+      , range(optionRange)
+  {}
 };
 
 /** A default value as an OptionSpec prints it (shortest form: 10, 0.001, -0.53), for
@@ -283,10 +330,44 @@ ReadImageGrid(const std::string & path);
 void
 WriteWhole(const std::string & path, const std::function<void(const std::string & partial)> & write);
 
+/** An exception naming `path` if it names an HDF5 file (.h5, .hdf5) that ITK's HDF5
+ * writers could not write whole: under a file-size limit or on a disk with less than
+ * 64 MB free. HDF5 crashes on a write that fails part-way. */
+void
+RequireRoomForHDF5(const std::string & path);
+
 /** WriteWhole for text: `write` writes to a stream, which is checked after it is
  * flushed and closed (a full disk or a size limit is an error, not a short file). */
 void
 WriteTextWhole(const std::string & path, const std::function<void(std::ostream & out)> & write);
+
+/** \brief A folder of outputs (a report: a page and its pictures) made whole or not at all.
+ *
+ * The files are written into Path(), a hidden folder inside the target that the
+ * constructor makes (with the target, if need be); Commit() moves them into the target,
+ * `last` (the page that links to the others) after the rest. Without a commit (a failed
+ * run) the destructor removes them, and the target keeps what it held. */
+class StagedDirectory
+{
+public:
+  explicit StagedDirectory(const std::string & directory);
+  ~StagedDirectory();
+  StagedDirectory(const StagedDirectory &) = delete;
+  StagedDirectory &
+  operator=(const StagedDirectory &) = delete;
+
+  const std::string &
+  Path() const
+  {
+    return m_Staging;
+  }
+  void
+  Commit(const std::string & last = "index.html");
+
+private:
+  std::string m_Directory;
+  std::string m_Staging;
+};
 
 /** Writes an image (compressed where the format allows) in the format the extension
  * names, whole or not at all (WriteWhole), except in formats whose header names a

@@ -25,6 +25,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <sstream>
 
 namespace MeshExtractionCLI
 {
@@ -119,6 +120,107 @@ Arguments::ParseDouble(const std::string & name, const std::string & text)
 }
 
 // ------------------------------------------------------------------------------
+// OptionRange
+// ------------------------------------------------------------------------------
+OptionRange
+OptionRange::Between(double low, double high)
+{
+  OptionRange r;
+  r.minimum = low;
+  r.maximum = high;
+  return r;
+}
+
+OptionRange
+OptionRange::Inside(double low, double high)
+{
+  OptionRange r = Between(low, high);
+  r.minimumExcluded = true;
+  r.maximumExcluded = true;
+  return r;
+}
+
+OptionRange
+OptionRange::AboveUpTo(double low, double high)
+{
+  OptionRange r = Between(low, high);
+  r.minimumExcluded = true;
+  return r;
+}
+
+OptionRange
+OptionRange::Any()
+{
+  OptionRange r;
+  r.minimumExcluded = true; // of -infinity: any finite number
+  return r;
+}
+
+bool
+OptionRange::IsSet() const
+{
+  return std::isfinite(minimum) || std::isfinite(maximum) || minimumExcluded;
+}
+
+bool
+OptionRange::Contains(double value) const
+{
+  return std::isfinite(value) && (minimumExcluded ? value > minimum : value >= minimum) &&
+         (maximumExcluded ? value < maximum : value <= maximum);
+}
+
+std::string
+OptionRange::Text() const
+{
+  if (!std::isfinite(minimum) && !std::isfinite(maximum))
+  {
+    return "any number";
+  }
+  const auto number = [](double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+  };
+  if (!std::isfinite(maximum))
+  {
+    return (minimumExcluded ? "> " : ">= ") + number(minimum);
+  }
+  return (minimumExcluded ? "(" : "[") + number(minimum) + ", " + number(maximum) + (maximumExcluded ? ")" : "]");
+}
+
+namespace
+{
+/** A UsageError naming the range unless every number of `value` (a list separated by
+ * 'x' or ',' for list options) is in the option's range. */
+void
+CheckRange(const OptionSpec & spec, const std::string & value)
+{
+  std::string text = value;
+  for (char & c : text)
+  {
+    // 'x' separates the numbers of a size (64x64x32); a number has no 'x' of its own.
+    c = (c == 'x' || c == ',') ? ' ' : c;
+  }
+  std::istringstream in(text);
+  std::string        token;
+  bool               any = false;
+  while (in >> token)
+  {
+    any = true;
+    const double number = Arguments::ParseDouble(spec.name, token);
+    if (!spec.range.Contains(number))
+    {
+      throw UsageError("--" + spec.name + " must be in " + spec.range.Text() + ", got " + token);
+    }
+  }
+  if (!any)
+  {
+    throw UsageError("--" + spec.name + " expects a number, got '" + value + "'");
+  }
+}
+} // namespace
+
+// ------------------------------------------------------------------------------
 // Command
 // ------------------------------------------------------------------------------
 void
@@ -132,7 +234,11 @@ Command::PrintHelp(std::ostream & os) const
     {
       std::string left = "  --" + o.name + (o.valueName.empty() ? "" : " " + o.valueName);
       os << std::left << std::setw(34) << left << ' ' << o.help;
-      if (!o.defaultValue.empty())
+      if (o.range.IsSet())
+      {
+        os << " (" << o.range.Text() << (o.defaultValue.empty() ? ")" : "; default: " + o.defaultValue + ")");
+      }
+      else if (!o.defaultValue.empty())
       {
         os << " (default: " << o.defaultValue << ")";
       }
@@ -194,6 +300,10 @@ ParseOption(const Command & command, int argc, char * argv[], int i, Arguments &
   else if (spec.valueName.empty() && inlineValue)
   {
     throw UsageError("--" + key + " takes no value");
+  }
+  if (spec.range.IsSet())
+  {
+    CheckRange(spec, value);
   }
   args.Set(key, spec.valueName.empty() ? "1" : value);
   return i;

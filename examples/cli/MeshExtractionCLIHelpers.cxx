@@ -72,10 +72,14 @@ Describe(const itk::ExceptionObject & e)
 std::vector<OptionSpec>
 GridOptions()
 {
-  return { { "size", "N|NxNxN", "phantom grid size in voxels", "per phantom, e.g. 64" },
-           { "spacing", "S|SxSxS", "voxel spacing in mm", "1" },
-           { "origin", "X,Y,Z", "physical position of voxel (0,0,0)", "0,0,0" },
-           { "direction", "A,B,C,D,E,F,G,H,I", "direction cosine matrix, nine numbers row by row", "identity" } };
+  return { { "size", "N|NxNxN", "phantom grid size in voxels", "per phantom, e.g. 64", OptionRange::Between(2, 65536) },
+           { "spacing", "S|SxSxS", "voxel spacing in mm", "1", OptionRange::AboveUpTo(0, 1e6) },
+           { "origin", "X,Y,Z", "physical position of voxel (0,0,0)", "0,0,0", OptionRange::Between(-1e9, 1e9) },
+           { "direction",
+             "A,B,C,D,E,F,G,H,I",
+             "direction cosine matrix, nine numbers row by row",
+             "identity",
+             OptionRange::Between(-1, 1) } };
 }
 
 namespace

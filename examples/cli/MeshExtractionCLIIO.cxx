@@ -45,7 +45,11 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 #include <vector>
+
+#include <sys/resource.h>
+#include <sys/statvfs.h>
 
 namespace MeshExtractionCLI
 {
@@ -261,6 +265,44 @@ MeshExtractionVersion()
   return MESHEXTRACTION_VERSION;
 }
 
+namespace
+{
+/** An exception naming what is wrong where an image's numbers are too large to
+ * compute with (the extraction interpolates and differences in float; a mesh made
+ * from them would hold infinities): an origin beyond +-1e9 mm, a spacing outside
+ * [1e-6, 1e6] mm, a voxel of a floating-point image beyond +-1e30. */
+template <typename TImage>
+void
+CheckImageNumbers(const TImage * image)
+{
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    if (!(std::abs(image->GetOrigin()[d]) <= 1e9))
+    {
+      itkGenericExceptionMacro("its origin " << image->GetOrigin() << " is beyond +-1e9 mm: too far to compute with");
+    }
+    if (!(image->GetSpacing()[d] >= 1e-6 && image->GetSpacing()[d] <= 1e6))
+    {
+      itkGenericExceptionMacro("its spacing " << image->GetSpacing() << " is outside [1e-6, 1e6] mm");
+    }
+  }
+  using PixelType = typename TImage::PixelType;
+  if constexpr (std::is_floating_point_v<PixelType>)
+  {
+    const PixelType * voxels = image->GetBufferPointer();
+    const std::size_t count = image->GetBufferedRegion().GetNumberOfPixels();
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      if (std::isfinite(voxels[i]) && !(std::abs(static_cast<double>(voxels[i])) <= 1e30))
+      {
+        itkGenericExceptionMacro("voxel " << i << " of the buffer holds " << voxels[i]
+                                          << ", beyond +-1e30: too large to interpolate and difference in float");
+      }
+    }
+  }
+}
+} // namespace
+
 template <typename TImage>
 typename TImage::Pointer
 ReadImageFile(const std::string & path)
@@ -275,12 +317,14 @@ ReadImageFile(const std::string & path)
       reader->SetImageIO(itk::GDCMImageIO::New());
       reader->SetFileNames(DicomSeriesFiles(path));
       reader->Update();
+      CheckImageNumbers(reader->GetOutput());
       return reader->GetOutput();
     }
     CheckImageDataComplete(path);
     auto reader = itk::ImageFileReader<TImage>::New();
     reader->SetFileName(path);
     reader->Update();
+    CheckImageNumbers(reader->GetOutput());
     return reader->GetOutput();
   }
   catch (const itk::ExceptionObject & e)
@@ -331,6 +375,14 @@ ReadScalarVolumeInformation(const std::string & path, const std::string & purpos
     {
       itkGenericExceptionMacro("'" << path << "' has no voxels (its size is " << io->GetDimensions(0) << " x "
                                    << io->GetDimensions(1) << " x " << io->GetDimensions(2) << ")");
+    }
+    if (io->GetDimensions(d) == 1)
+    {
+      // NIfTI's reader turns a dimension of 0 or less in the header into 1.
+      itkGenericExceptionMacro("'" << path << "' is one voxel thick (its size is " << io->GetDimensions(0) << " x "
+                                   << io->GetDimensions(1) << " x " << io->GetDimensions(2) << "; a NIfTI header with "
+                                   << "a dimension of 0 or less reads so): " << purpose
+                                   << " needs at least 2 voxels along each axis");
     }
   }
   return io;
@@ -383,10 +435,38 @@ ReadImageGrid(const std::string & path)
   return GridOf(reader->GetOutput());
 }
 
+void
+RequireRoomForHDF5(const std::string & path)
+{
+  const std::string extension = itksys::SystemTools::LowerCase(itksys::SystemTools::GetFilenameLastExtension(path));
+  if (extension != ".h5" && extension != ".hdf5" && extension != ".hdf" && extension != ".he5")
+  {
+    return;
+  }
+  // HDF5 does not survive a write that fails part-way (it crashes when the file is closed
+  // or at exit), so ITK's HDF5 writers get a file only where one can be written whole.
+  constexpr std::uint64_t room = std::uint64_t{ 64 } << 20;
+  rlimit                  limit{};
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && limit.rlim_cur < room)
+  {
+    itkGenericExceptionMacro("cannot write '" << path << "': a file size limit of " << limit.rlim_cur
+                                              << " bytes is in force, and HDF5 cannot fail a write safely (it needs "
+                                              << (room >> 20) << " MB; or write another format)");
+  }
+  const std::string folder = itksys::SystemTools::GetFilenamePath(itksys::SystemTools::CollapseFullPath(path));
+  struct statvfs    disk{};
+  if (statvfs(folder.c_str(), &disk) == 0 && static_cast<std::uint64_t>(disk.f_bavail) * disk.f_frsize < room)
+  {
+    itkGenericExceptionMacro("cannot write '" << path << "': less than " << (room >> 20) << " MB free in '" << folder
+                                              << "', and HDF5 cannot fail a write safely");
+  }
+}
+
 template <typename TImage>
 void
 WriteImageFile(const TImage * image, const std::string & path)
 {
+  RequireRoomForHDF5(path);
   auto write = [image](const std::string & file) {
     auto writer = itk::ImageFileWriter<TImage>::New();
     writer->SetFileName(file);
@@ -488,6 +568,17 @@ ReadMeshFile(const std::string & path)
   catch (const itk::ExceptionObject & e)
   {
     itkGenericExceptionMacro("cannot read mesh '" << path << "': " << Describe(e));
+  }
+  // ITK's mesh IO turns a coordinate beyond float range into an infinity (the module's
+  // readers refuse it themselves).
+  for (auto it = mesh->GetPoints()->Begin(); it != mesh->GetPoints()->End(); ++it)
+  {
+    const auto & p = it.Value();
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+    {
+      itkGenericExceptionMacro("cannot read mesh '" << path << "': point " << it.Index()
+                                                    << " has a coordinate that is not a finite float (" << p << ")");
+    }
   }
   if (mesh->GetNumberOfPoints() == 0 || mesh->GetNumberOfCells() == 0)
   {
@@ -614,6 +705,19 @@ namespace
 void
 WriteFaces(const ME::PolygonMesh & faces, const std::string & path, const MeshWriteSettings & settings)
 {
+  // Said before writing: otherwise the check that the file reads back whole would
+  // blame the disk.
+  for (std::size_t i = 0; i < faces.points.size(); ++i)
+  {
+    const ME::Vec3 & p = faces.points[i];
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+    {
+      itkGenericExceptionMacro("cannot write '" << path << "': point " << i << " of the mesh is (" << p[0] << ", "
+                                                << p[1] << ", " << p[2]
+                                                << "): the computation overflowed on numbers of the input too large "
+                                                   "to compute with");
+    }
+  }
   ME::WriteWhole(path, [&](const std::string & partial) {
     // VTK legacy files stay ITK's, as every earlier version of the tool wrote them.
     const bool vtk = ME::MeshFileFormatFromFileName(path) == ME::MeshFileFormat::VTKLegacy;

@@ -22,6 +22,7 @@
 
 #include "itkEdgeSwapQuadEdgeMeshFilter.h"
 #include "itkLaplacianSmoothingQuadEdgeMeshFilter.h"
+#include "itkMeshExtractionPredicates.h"
 #include "itkTaubinSmoothingQuadEdgeMeshFilter.h"
 
 #include <iomanip>
@@ -275,6 +276,19 @@ SmoothTaubin(ImproveMeshType * mesh, const ImproveOptions & o, const Arguments &
   return out;
 }
 
+/** The triangles whose corners are collinear or coincide (decided exactly). */
+std::size_t
+CountDegenerateTriangles(const ImproveMeshType * mesh)
+{
+  const ME::IndexedTriangleMesh flat = ME::MakeIndexedTriangleMesh(*mesh);
+  std::size_t                   count = 0;
+  for (const auto & t : flat.triangles)
+  {
+    count += ME::detail::IsTriangleDegenerateExact(flat.points[t[0]], flat.points[t[1]], flat.points[t[2]]) ? 1 : 0;
+  }
+  return count;
+}
+
 /** --report: the quality before and after, and the two side by side. */
 void
 PrintBeforeAndAfter(const MeasuredMesh & before, const MeasuredMesh & after)
@@ -298,6 +312,15 @@ RunImprove(const Arguments & args)
   ImproveMeshType::Pointer mesh = ReadManifoldMesh(inputPath, "improve");
   std::cerr << "improve " << inputPath << ": " << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfFaces()
             << " triangles\n";
+  // Smoothing and swaps improve a surface; they cannot make one of triangles that have
+  // no area (points that all coincide, say), and their guards keep every move from
+  // making a triangle degenerate, so such an input would come out as it went in.
+  const std::size_t degenerate = CountDegenerateTriangles(mesh);
+  if (degenerate == mesh->GetNumberOfFaces())
+  {
+    itkGenericExceptionMacro("'" << inputPath << "' has no surface to improve: all " << degenerate
+                                 << " triangles are degenerate (their corners coincide or are collinear)");
+  }
   MeasuredMesh before;
   if (args.Has("report"))
   {
@@ -314,6 +337,11 @@ RunImprove(const Arguments & args)
   else if (o.smoothing == "taubin")
   {
     mesh = SmoothTaubin(mesh, o, args);
+  }
+  if (const std::size_t left = CountDegenerateTriangles(mesh); left > 0)
+  {
+    std::cout << "  " << left << " degenerate triangles (corners collinear or coincident) remain of the input's "
+              << degenerate << '\n';
   }
   WriteMeshFile(mesh.GetPointer(), outputPath, writeSettings);
   std::cerr << "  wrote " << outputPath << " in " << std::fixed << std::setprecision(2) << watch.Seconds() << " s\n"
@@ -358,14 +386,28 @@ MakeImproveCommand()
     { "iterations",
       "N",
       "smoothing iterations (taubin: lambda|mu pairs)",
-      std::to_string(ImproveDefaults::iterations) },
+      std::to_string(ImproveDefaults::iterations),
+      OptionRange::Between(0, 1000) },
     { "relaxation",
       "F",
-      "laplacian: relaxation factor in (0, 1]",
-      DefaultText(laplacianDefaults->GetRelaxationFactor()) },
-    { "lambda", "L", "taubin: positive step factor in (0, 1]", DefaultText(taubinDefaults->GetLambda()) },
-    { "mu", "M", "taubin: negative step factor, < -lambda", DefaultText(taubinDefaults->GetMu()) },
-    { "pass-band", "K", "taubin: pass-band frequency k_PB; mu from 1/lambda + 1/mu = K", "" },
+      "laplacian: relaxation factor",
+      DefaultText(laplacianDefaults->GetRelaxationFactor()),
+      OptionRange::AboveUpTo(0, 1) },
+    { "lambda",
+      "L",
+      "taubin: positive step factor",
+      DefaultText(taubinDefaults->GetLambda()),
+      OptionRange::AboveUpTo(0, 1) },
+    { "mu",
+      "M",
+      "taubin: negative step factor, < -lambda",
+      DefaultText(taubinDefaults->GetMu()),
+      OptionRange::Inside(-100, 0) },
+    { "pass-band",
+      "K",
+      "taubin: pass-band frequency k_PB; mu from 1/lambda + 1/mu = K",
+      "",
+      OptionRange::Inside(0, 1) },
     { "volume-preservation", "", "laplacian: approximate volume preservation (thesis eq. 2.7-2.10)", "" },
     { "swap",
       OptionChoices(SwapCriterionNames(), true) + "|none",
@@ -374,15 +416,18 @@ MakeImproveCommand()
     { "swap-iterations",
       "N",
       "largest number of passes over the edges",
-      DefaultText(swapDefaults->GetMaximumNumberOfIterations()) },
+      DefaultText(swapDefaults->GetMaximumNumberOfIterations()),
+      OptionRange::Between(0, 1000) },
     { "feature-angle",
       "DEG",
       "no swap across or creating a crease sharper than this",
-      DefaultText(swapDefaults->GetFeatureAngle()) },
+      DefaultText(swapDefaults->GetFeatureAngle()),
+      OptionRange::Between(0, 180) },
     { "swap-quality",
       "RATIO",
       "a swap keeps its worst triangle's q_area >= RATIO x the old worst",
-      DefaultText(swapDefaults->GetMinimumQAreaRatio()) },
+      DefaultText(swapDefaults->GetMinimumQAreaRatio()),
+      OptionRange::Between(0, 1) },
     { "report", "", "print the quality before and after", "" },
   };
   for (const auto & o : MeshWriteOptions())

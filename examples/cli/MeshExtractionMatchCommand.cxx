@@ -151,6 +151,7 @@ PrintResiduals(const std::string &              label,
 void
 WriteTransform(const TransformType * transform, const std::string & path)
 {
+  RequireRoomForHDF5(path);
   WriteWhole(path, [transform](const std::string & partial) {
     auto writer = itk::TransformFileWriterTemplate<double>::New();
     writer->SetInput(transform);

@@ -172,12 +172,14 @@ MakePhantomCommand()
   c.options = GridOptions();
   c.options.push_back({ "image-mode", "distance|mask|step", "what the voxels hold", "per phantom" });
   c.options.push_back({ "pixel-type", "TYPE", "uchar, short, ushort, float or double", "float; uchar for masks" });
-  c.options.push_back({ "distance-scale", "S", "distance map value per mm", "1" });
-  c.options.push_back({ "inside", "V", "mask/step value inside", "1 (mask), 100 (step)" });
-  c.options.push_back({ "outside", "V", "mask/step value outside", "0" });
-  c.options.push_back({ "edge-width", "MM", "standard deviation of the blurred step", "1" });
-  c.options.push_back({ "noise", "SIGMA", "additive Gaussian noise", "0" });
-  c.options.push_back({ "seed", "N", "noise seed", "0" });
+  c.options.push_back({ "distance-scale", "S", "distance map value per mm", "1", OptionRange::AboveUpTo(0, 1e6) });
+  c.options.push_back(
+    { "inside", "V", "mask/step value inside", "1 (mask), 100 (step)", OptionRange::Between(-1e20, 1e20) });
+  c.options.push_back({ "outside", "V", "mask/step value outside", "0", OptionRange::Between(-1e20, 1e20) });
+  c.options.push_back(
+    { "edge-width", "MM", "standard deviation of the blurred step", "1", OptionRange::AboveUpTo(0, 1e3) });
+  c.options.push_back({ "noise", "SIGMA", "additive Gaussian noise", "0", OptionRange::Between(0, 1e20) });
+  c.options.push_back({ "seed", "N", "noise seed", "0", OptionRange::Between(0, 2147483647) });
   c.minimumPositional = 1;
   c.maximumPositional = 2;
   c.run = RunPhantom;

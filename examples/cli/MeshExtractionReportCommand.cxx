@@ -265,10 +265,10 @@ WriteFigureFiles(const std::vector<MeasuredMesh> & meshes,
 int
 RunReport(const Arguments & args)
 {
-  const std::string directory = args.positional.front();
-  itksys::SystemTools::MakeDirectory(directory);
-  // A page of an earlier run would look like this run's if this one fails.
-  itksys::SystemTools::RemoveFile(directory + "/index.html");
+  // Made in a staging folder and moved in when whole: a failed run leaves an earlier
+  // report in the folder as it was.
+  StagedDirectory                       staged(args.positional.front());
+  const std::string                     directory = staged.Path();
   itk::ImplicitSurfaceFunction::Pointer surface;
   IOMeshType::Pointer                   referenceMesh;
   if (args.Has("phantom"))
@@ -293,30 +293,13 @@ RunReport(const Arguments & args)
     meshes.push_back(MeasureAndRender(path, RenderingName(i - 1), directory, settings));
   }
   WriteFigureFiles(meshes, names, directory);
-
-  // index.html last, whole or not at all: a failed run leaves no page that looks complete.
-  const std::string page = directory + "/index.html";
-  const std::string partial = page + ".partial";
-  {
-    std::ofstream html(partial);
-    if (!html)
-    {
-      itkGenericExceptionMacro("cannot write '" << partial << "'");
-    }
+  WriteTextWhole(directory + "/index.html", [&](std::ostream & html) {
     WriteHtmlHead(html, args.Get("title", "MeshExtraction report"), settings);
     WriteHtmlTable(html, meshes, names);
     WriteHtmlFigures(html, names, args);
-    html.flush();
-    if (!html)
-    {
-      itksys::SystemTools::RemoveFile(partial);
-      itkGenericExceptionMacro("cannot write '" << partial << "' (disk full?)");
-    }
-  }
-  if (std::rename(partial.c_str(), page.c_str()) != 0)
-  {
-    itkGenericExceptionMacro("cannot rename '" << partial << "' to '" << page << "'");
-  }
+  });
+  staged.Commit("index.html");
+  const std::string page = args.positional.front() + "/index.html";
   std::cout << "report: " << page << '\n';
   return 0;
 }

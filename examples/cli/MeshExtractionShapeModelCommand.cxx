@@ -28,6 +28,7 @@
 #include "itkMeshExtractionShapeModelEvaluation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -209,13 +210,16 @@ WriteCompactnessSVG(const std::vector<double> & cumulative, std::size_t kept, co
 /** An HTML page of the model: compactness, the variance table, and renderings of the
  * mean and of the first modes at -2 and +2 standard deviations. */
 void
-WriteModelReport(const ModelSummary &                                                     summary,
+WriteModelReport(const ModelSummary &                                                        summary,
                  const std::function<ME::IndexedTriangleMesh(const std::vector<double> &)> & synthesize,
-                 const std::vector<double> &                                               e2,
-                 const std::vector<std::string> &                                          names,
-                 const std::string &                                                       directory)
+                 const std::vector<double> &                                                 e2,
+                 const std::vector<std::string> &                                            names,
+                 const std::string &                                                         target)
 {
-  std::filesystem::create_directories(directory);
+  // Made in a staging folder and moved in when whole (an earlier report stays as it was
+  // if this one fails).
+  StagedDirectory           staged(target);
+  const std::string         directory = staged.Path();
   const std::size_t         modes = summary.variances.size();
   const std::vector<double> cumulative = summary.Cumulative();
   WriteCompactnessSVG(cumulative, modes, directory + "/compactness.svg");
@@ -273,7 +277,8 @@ WriteModelReport(const ModelSummary &                                           
     }
     out << "</body></html>\n";
   });
-  std::cout << "report written to " << directory << "/index.html\n";
+  staged.Commit("index.html");
+  std::cout << "report written to " << target << "/index.html\n";
 }
 
 int
@@ -401,6 +406,40 @@ NumbersOf(const ME::JSONValue & value, std::size_t count, const std::string & wh
   return numbers;
 }
 
+/** An exception naming `what` unless the rotation is a proper rotation (orthonormal,
+ * determinant +1, to the digits a state file holds) and the scale positive: what the
+ * steps write, and what the next step's arithmetic needs. */
+void
+RequireSimilarity(const ME::detail::SimilarityParameters & t, const std::string & what)
+{
+  double largest = 0.0; // of R^T R - I
+  for (unsigned int i = 0; i < 3; ++i)
+  {
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      double dot = 0.0;
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        dot += t.rotation[k][i] * t.rotation[k][j];
+      }
+      largest = std::max(largest, std::abs(dot - (i == j ? 1.0 : 0.0)));
+    }
+  }
+  const auto & r = t.rotation;
+  const double determinant = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
+                             r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                             r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+  if (!(largest <= 1e-6) || !(determinant > 0.0))
+  {
+    itkGenericExceptionMacro(<< what << ": the rotation is not a proper rotation (R^T R differs from I by " << largest
+                             << ", det R = " << determinant << ").");
+  }
+  if (!(t.scale > 0.0))
+  {
+    itkGenericExceptionMacro(<< what << ": the scale is " << t.scale << "; it must be positive.");
+  }
+}
+
 ME::detail::SimilarityParameters
 ReadSimilarity(const std::string & path, const std::string & name)
 {
@@ -416,6 +455,7 @@ ReadSimilarity(const std::string & path, const std::string & name)
     t.rotation[k / 3][k % 3] = rotation[k];
   }
   t.translation = ME::MakeVec3(translation[0], translation[1], translation[2]);
+  RequireSimilarity(t, path + ": \"" + name + "\"");
   return t;
 }
 
@@ -445,6 +485,10 @@ ReadMatchState(const std::string & path)
   ME::detail::TemplateMatch match;
   match.templateToMesh = ReadSimilarity(path, "template_to_mesh");
   match.e2 = NumberOf(Member(document, "e2", path), path + ": e2");
+  if (match.e2 < 0.0)
+  {
+    itkGenericExceptionMacro(<< path << ": e2 is " << match.e2 << "; a mean squared distance is not negative.");
+  }
   match.corresponded = ReadStepMesh(corresponded.text).points;
   return match;
 }
@@ -798,14 +842,34 @@ MakeShapeModelCommand()
     { "report", "DIR", "build, finish: an HTML page of the model (compactness, the modes rendered)", "" },
     { "correspondence", "surface|point", "closest points on the triangles or the nearest vertices", "surface" },
     { "thesis", "", "no non-rigid stage: the thesis' closest-point correspondence", "" },
-    { "variance-fraction", "F", "keep the modes that explain this fraction of the variance", "0.95" },
-    { "passes", "N", "build: at most this many template passes; finish: the passes run", "2" },
+    { "variance-fraction",
+      "F",
+      "keep the modes that explain this fraction of the variance",
+      "0.95",
+      OptionRange::AboveUpTo(0, 1) },
+    { "passes",
+      "N",
+      "build: at most this many template passes; finish: the passes run",
+      "2",
+      OptionRange::Between(1, 100) },
     { "initial", "STATE.json", "match: this mesh's state of the previous pass", "" },
     { "gauge", "RENEWAL.json", "match: the previous pass's renewal", "" },
-    { "pivot", "I", "finish: the pivot's index, for the model's description", "0" },
-    { "coefficients", "S,S,...", "sample: standard deviations of the first modes (--coefficients=-2,1)", "" },
-    { "random-seed", "N", "sample: coefficients drawn from a standard normal, within +-2", "" },
-    { "modes", "K", "evaluate: the modes of the generalisation, specificity and stability", "3" },
+    { "pivot", "I", "finish: the pivot's index, for the model's description", "0", OptionRange::Between(0, 1e6) },
+    { "coefficients",
+      "S,S,...",
+      "sample: standard deviations of the first modes (--coefficients=-2,1)",
+      "",
+      OptionRange::Between(-10, 10) },
+    { "random-seed",
+      "N",
+      "sample: coefficients drawn from a standard normal, within +-2",
+      "",
+      OptionRange::Between(0, 2147483647) },
+    { "modes",
+      "K",
+      "evaluate: the modes of the generalisation, specificity and stability",
+      "3",
+      OptionRange::Between(1, 1000) },
   };
   c.minimumPositional = 2;
   c.run = RunVerb;
