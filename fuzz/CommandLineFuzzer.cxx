@@ -18,7 +18,8 @@
 // libFuzzer harness for the command-line tool's options: the first byte chooses the
 // command, the rest, split at NUL bytes, are its arguments, parsed and run as
 // `meshextraction COMMAND ARGS...` runs them. The runs happen in a scratch directory that
-// holds a small mesh (m.obj, m.vtk) and image (s.nrrd) for arguments to name. A command
+// holds a small mesh (m.obj, m.vtk), an image (s.nrrd), shape-model states (st*.json)
+// and a broken model (bad.h5) for arguments to name. A command
 // may refuse its arguments (UsageError: exit 2) or fail on its inputs
 // (itk::ExceptionObject: exit 1, a message naming the file or option); any other
 // exception is a finding (a library's message such as "stol" names neither), and so is a
@@ -93,6 +94,15 @@ TooMuchWork(const std::vector<std::string> & arguments)
   return false;
 }
 
+/** The inputs LLVMFuzzerInitialize writes into the scratch directory. */
+const std::set<std::string> &
+Inputs()
+{
+  static const std::set<std::string> inputs{ "m.obj",         "m.vtk", "s.nrrd", "st.json", "st-rotation.json",
+                                             "st-scale.json", "bad.h5" };
+  return inputs;
+}
+
 /** Removes what the runs wrote into the scratch directory, keeping the inputs. */
 void
 RemoveOutputs()
@@ -102,7 +112,7 @@ RemoveOutputs()
   for (const auto & entry : fs::directory_iterator(fs::current_path(), error))
   {
     const std::string name = entry.path().filename().string();
-    if (name != "m.obj" && name != "m.vtk" && name != "s.nrrd")
+    if (Inputs().count(name) == 0)
     {
       fs::remove_all(entry.path(), error);
     }
@@ -131,6 +141,17 @@ LLVMFuzzerInitialize(int *, char ***)
                             "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n";
   std::ofstream("m.vtk") << "# vtk DataFile Version 4.2\nm\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n"
                             "0 0 0 1 0 0 0 1 0 0 0 1\nPOLYGONS 4 16\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  // Shape-model step states (renew, match --initial): a proper one, one whose rotation
+  // is no rotation, one of scale 0; and a model file that is not HDF5.
+  const char * states[][2] = { { "st.json", "[1, 0, 0, 0, 1, 0, 0, 0, 1], \"scale\": 1" },
+                               { "st-rotation.json", "[1e308, 0, 0, 0, 1, 0, 0, 0, 1], \"scale\": 1" },
+                               { "st-scale.json", "[1, 0, 0, 0, 1, 0, 0, 0, 1], \"scale\": 0" } };
+  for (const auto & state : states)
+  {
+    std::ofstream(state[0]) << "{\"e2\": 1, \"corresponded\": \"m.obj\", \"template_to_mesh\": {\"rotation\": "
+                            << state[1] << ", \"translation\": [0, 0, 0]}}\n";
+  }
+  std::ofstream("bad.h5") << "\x89HDF\r\n\x1a\n not a model";
   itk::MeshExtraction::PhantomGrid grid =
     itk::MeshExtraction::DefaultPhantomGrid(itk::MeshExtraction::PhantomShape::Sphere);
   grid.size.Fill(16);

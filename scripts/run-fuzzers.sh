@@ -64,6 +64,12 @@ tetrahedron_stl='solid t\nfacet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 
 printf "\x05$tetrahedron_off" > "$corpus/mesh/seed-tetrahedron-off"
 printf "\x02$tetrahedron_ply" > "$corpus/mesh/seed-tetrahedron-ply"
 printf "\x03$tetrahedron_stl" > "$corpus/mesh/seed-triangle-stl"
+# Issue 48: a coordinate beyond float range (OBJ), faces of 0 to 2 vertices (OFF, PLY, VTK).
+octahedron_faces='f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n'
+printf "\x04v 1e40 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n$octahedron_faces" > "$corpus/mesh/seed-far-obj"
+printf '\x05OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n2 0 1\n0\n' > "$corpus/mesh/seed-short-faces-off"
+printf "\x02${tetrahedron_ply/3 1 2 3/2 1 2}" > "$corpus/mesh/seed-short-face-ply"
+printf '\x00# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 2 6\n3 0 1 2\n1 0\n' > "$corpus/mesh/seed-short-polygon-vtk"
 printf '\x04\x04\x04\x00\x80\x80\x80\x80\x80\x05\x05\x80\x80\x05\x05\x80' > "$corpus/extraction/seed-block"
 printf '\x06\x06\x06\x12\x80\x7f\x80\x7f\x00\x80\x7f\x80' > "$corpus/extraction/seed-checker-hq"
 # Label maps (bit 5 of the settings): 3 labels, and 4 labels unrelaxed.
@@ -87,6 +93,10 @@ seed_command quality 4 m.obj m.vtk --json q.json --csv q.csv --phantom sphere --
 seed_command report 5 rep m.obj --title x
 seed_command match 6 s.nrrd s.nrrd --fixed-landmarks a.json --moving-landmarks b.json
 seed_command shape-model 7 m.obj m.obj --output x.h5
+seed_command renew 7 renew m.obj st.json --output r.ply --json r.json
+seed_command renew-rotation 7 renew m.obj st-rotation.json --output r.ply --json r.json
+seed_command renew-scale 7 renew m.obj st-scale.json st.json --output r.ply --json r.json
+seed_command sample-broken-model 7 sample bad.h5 --output x.ply --coefficients=1,-2
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 status=0
