@@ -26,12 +26,36 @@
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace MeshExtractionCLI
 {
 // ------------------------------------------------------------------------------
 // Arguments
 // ------------------------------------------------------------------------------
+namespace
+{
+/** The numbers of an option's value, each as written and as parsed: a list separated by
+ * 'x' (a size: 64x64x32; no number has an 'x' of its own) or ','. */
+std::vector<std::pair<std::string, double>>
+ListedNumbers(const std::string & name, std::string text)
+{
+  for (char & c : text)
+  {
+    c = (c == 'x' || c == ',') ? ' ' : c;
+  }
+  std::vector<std::pair<std::string, double>> numbers;
+  std::istringstream                          in(text);
+  std::string                                 token;
+  while (in >> token)
+  {
+    numbers.emplace_back(token, Arguments::ParseDouble(name, token));
+  }
+  return numbers;
+}
+} // namespace
+
 bool
 Arguments::Has(const std::string & name) const
 {
@@ -79,16 +103,9 @@ std::vector<double>
 Arguments::GetNumbers(const std::string & name, unsigned int count) const
 {
   std::vector<double> values;
-  std::string         text = Get(name);
-  for (char & c : text)
+  for (const auto & number : ListedNumbers(name, Get(name)))
   {
-    c = (c == 'x' || c == ',') ? ' ' : c;
-  }
-  std::istringstream in(text);
-  std::string        token;
-  while (in >> token)
-  {
-    values.push_back(ParseDouble(name, token));
+    values.push_back(number.second);
   }
   if (values.size() == 1 && count > 1)
   {
@@ -195,25 +212,15 @@ namespace
 void
 CheckRange(const OptionSpec & spec, const std::string & value)
 {
-  std::string text = value;
-  for (char & c : text)
+  const auto numbers = ListedNumbers(spec.name, value);
+  for (const auto & [text, number] : numbers)
   {
-    // 'x' separates the numbers of a size (64x64x32); a number has no 'x' of its own.
-    c = (c == 'x' || c == ',') ? ' ' : c;
-  }
-  std::istringstream in(text);
-  std::string        token;
-  bool               any = false;
-  while (in >> token)
-  {
-    any = true;
-    const double number = Arguments::ParseDouble(spec.name, token);
     if (!spec.range.Contains(number))
     {
-      throw UsageError("--" + spec.name + " must be in " + spec.range.Text() + ", got " + token);
+      throw UsageError("--" + spec.name + " must be in " + spec.range.Text() + ", got " + text);
     }
   }
-  if (!any)
+  if (numbers.empty())
   {
     throw UsageError("--" + spec.name + " expects a number, got '" + value + "'");
   }
